@@ -1,0 +1,38 @@
+#pragma once
+// Wires a model file to a run: specimen -> model -> solver loop over the load path -> outputs.
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "vorodec/geometry/tessellation.hpp"
+#include "vorodec/io/model_file.hpp"
+
+namespace vorodec::app {
+
+// The specimen of a model file: tessellated, or loaded from a prepared specimen file.
+geometry::Tessellation make_specimen(const io::ModelConfig& cfg);
+
+struct RunOptions {
+  std::filesystem::path out;  // results folder
+  long max_steps = 0;         // > 0: stop after this many steps (short mode)
+  bool write_vtk = true;
+  bool progress = true;       // progress bar (terminal) or progress lines
+};
+
+struct RunSummary {
+  int exit_code = 0;  // 0 finished, 3 stopped unstable, 4 step limit of the model file reached
+  std::string status;
+  double peak_stress = 0;  // Pa
+  double youngs_modulus = 0, poisson_ratio = 0;
+  long steps = 0;
+  double wall_seconds = 0;
+  std::size_t blocks = 0, contacts = 0, cracks_tensile = 0, cracks_shear = 0;
+};
+
+RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& specimen,
+                     const RunOptions& options);
+
+// The initial contacts of a model with their sampled properties, as text (for `vorodec build`).
+std::string describe_contacts(const io::ModelConfig& cfg, const geometry::Tessellation& specimen);
+
+}  // namespace vorodec::app

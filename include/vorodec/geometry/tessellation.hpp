@@ -1,0 +1,64 @@
+#pragma once
+// Voronoi tessellation of a specimen outline. CGAL stays inside src/geometry/voronoi_builder.cpp.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "vorodec/geometry/point.hpp"
+
+namespace vorodec::geometry {
+
+enum class OutlineKind { rectangle, disc };
+
+struct Outline {
+  OutlineKind kind = OutlineKind::rectangle;
+  double width = 0.0;     // m, rectangle: lower-left corner at (0, 0)
+  double height = 0.0;    // m
+  double diameter = 0.0;  // m, disc: centre at (diameter/2, diameter/2)
+  int disc_segments = 0;  // straight segments approximating the disc; 0 = chosen from block size
+};
+
+struct TessellationSettings {
+  Outline outline;
+  double mean_edge_length = 0.0;  // m, target measured mean Voronoi edge length (0 = use block_count)
+  int block_count = 0;            // target number of blocks (0 = use mean_edge_length)
+  std::uint64_t seed = 1;
+  int lloyd_iterations = 0;      // centroidal (Lloyd) relaxation sweeps
+  double min_edge_length = 0.0;  // m, shorter edges are collapsed to a point
+};
+
+struct SpecimenReport {
+  std::size_t blocks = 0;
+  std::size_t shared_edges = 0;    // edges between two blocks (each gives two point contacts)
+  std::size_t boundary_edges = 0;  // edges on the outline
+  double edge_min = 0, edge_mean = 0, edge_max = 0;  // m
+  double area_min = 0, area_mean = 0, area_max = 0;  // m^2
+  double smallest_angle_deg = 0;                     // smallest interior angle of any block
+  std::size_t edges_collapsed = 0;
+  double outline_area = 0;  // m^2, of the (polygonal) outline
+  std::vector<std::string> warnings;  // one line per alteration or suspicious feature
+};
+
+// Blocks as counter-clockwise index lists into a shared vertex table: neighbouring blocks share
+// vertex indices exactly, so shared edges are found by index. Blocks are numbered along a
+// Hilbert curve of their centroids (memory locality in the solver).
+struct Tessellation {
+  std::vector<Point> vertices;
+  std::vector<std::vector<std::uint32_t>> blocks;
+  SpecimenReport report;
+};
+
+class GeometryError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws GeometryError for impossible input (non-positive size, fewer than 2 blocks, edge limits
+// that cannot be met).
+Tessellation tessellate(const TessellationSettings& settings);
+
+// Multi-line, human-readable specimen report (printed after building).
+std::string format_report(const SpecimenReport& report);
+
+}  // namespace vorodec::geometry

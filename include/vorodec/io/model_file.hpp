@@ -1,0 +1,51 @@
+#pragma once
+// The model file (TOML): every key documented in README.md, validated with file, key and line.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "vorodec/geometry/tessellation.hpp"
+#include "vorodec/laws/contact_law.hpp"
+#include "vorodec/loading/load_path.hpp"
+#include "vorodec/solver/solver.hpp"
+
+namespace vorodec::io {
+
+// Bad input: the message already names the file, the key and the line.
+class ModelFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct LawChoice {
+  std::string name;
+  laws::LawParams params;
+};
+
+struct OutputSettings {
+  long history_steps = 200;  // steps between history rows
+  long vtk_steps = 20000;    // steps between VTK frames (also at stage ends)
+};
+
+struct ModelConfig {
+  std::filesystem::path file;
+  std::string title;
+  std::uint64_t seed = 1;
+  geometry::TessellationSettings tessellation;
+  std::optional<std::filesystem::path> specimen_file;  // prepared specimen (vorodec build)
+  int specimen_line = 0;                               // line of [specimen], for geometry errors
+  double density = 0;                                  // kg/m^3
+  double rounding_length = 0;                          // m
+  LawChoice joints;                                    // specimen block to block
+  LawChoice platens;                                   // platen to specimen
+  solver::SolverSettings solver;
+  long max_steps = 0;
+  loading::LoadPath load_path;
+  OutputSettings output;
+};
+
+ModelConfig read_model_file(const std::filesystem::path& file);
+
+}  // namespace vorodec::io

@@ -1,0 +1,47 @@
+#pragma once
+// ParaView output: one .vtp per output time for blocks, contacts and cracks, tied together by .pvd
+// collections. VTK stays inside src/io/vtk_writer.cpp.
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "vorodec/geometry/point.hpp"
+
+namespace vorodec::io {
+
+// Everything a writer needs of one output time, already in world coordinates; writers never read
+// the model itself.
+struct VtkFrame {
+  double time = 0.0;  // s
+  // Blocks as polygons: block b has corners block_points[block_offsets[b] .. block_offsets[b+1]).
+  std::vector<geometry::Point> block_points;
+  std::vector<std::uint32_t> block_offsets;
+  std::vector<std::int32_t> block_id, block_group;
+  std::vector<geometry::Point> block_velocity;      // m/s
+  std::vector<geometry::Point> block_displacement;  // m
+  // Contacts as line segments from block A's centroid to block B's centroid through the contact point.
+  std::vector<geometry::Point> contact_point;  // m
+  std::vector<geometry::Point> contact_a, contact_b;  // centroids of the two blocks, m
+  std::vector<double> contact_normal_force, contact_shear_force;  // N (per m thickness), compression +
+  std::vector<std::int32_t> contact_state;  // ContactState as int: 0 intact, 1 slipping, 2 tensile, 3 shear
+  // Cracks (failed contacts) as segments centred on the failure point.
+  std::vector<geometry::Point> crack_begin, crack_end;
+  std::vector<std::int32_t> crack_type;  // 1 tensile, 2 shear
+  std::vector<double> crack_time;        // s
+};
+
+// Writes <dir>/blocks_<n>.vtp, contacts_<n>.vtp, cracks_<n>.vtp per frame and rewrites
+// blocks.pvd, contacts.pvd, cracks.pvd after every frame, so an interrupted run stays readable.
+class VtkSeriesWriter {
+ public:
+  explicit VtkSeriesWriter(std::filesystem::path dir);
+  void write(const VtkFrame& frame);
+  std::size_t frames() const { return times_.size(); }
+
+ private:
+  void write_collections() const;
+  std::filesystem::path dir_;
+  std::vector<double> times_;
+};
+
+}  // namespace vorodec::io

@@ -1,0 +1,119 @@
+#pragma once
+// The seam between the solver and contact laws. A law sees one contact's kinematics and its own
+// state and returns forces and an event; the solver calls each law group once per step for its
+// contiguous range of contacts, so there is no virtual call per contact.
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vorodec/model/model.hpp"
+#include "vorodec/model/weibull.hpp"
+
+namespace vorodec::laws {
+
+struct ContactKinematics {
+  double gap;     // m, current gap (u_n; negative = overlap)
+  double du_n;    // m, normal displacement increment of this step (opening positive)
+  double du_s;    // m, shear displacement increment of this step
+  double length;  // m, contact length
+  double dt;      // s
+};
+
+enum class ContactEvent : std::uint8_t { none, slip, tensile_failure, shear_failure };
+
+struct LawResult {
+  double fn;      // N, normal force, compression positive
+  double fs;      // N, shear force along s = (-n_y, n_x)
+  double kn, ks;  // N/m, current spring stiffnesses (time step and strain energy)
+  ContactEvent event;
+};
+
+// A crack: a contact that failed, recorded once at the intact -> failed transition.
+struct CrackEvent {
+  double time;         // s
+  double x, y;         // m, contact point
+  double nx, ny;       // contact normal
+  double length;       // m
+  std::int32_t a, b;   // blocks
+  ContactEvent type;   // tensile_failure or shear_failure
+};
+
+// Per-step outputs that are reduced over contacts.
+struct ContactTotals {
+  double dissipated_slip = 0.0;      // J per m, friction (and dilation) work of this step
+  double dissipated_breakage = 0.0;  // J per m, spring energy released by failures this step
+};
+
+struct StepContext {
+  model::Blocks* blocks;
+  model::Contact* contacts;      // whole contact array
+  model::ContactForce* forces;   // whole force array
+  std::vector<std::vector<CrackEvent>>* cracks_per_thread;
+  double dt;    // s
+  double time;  // s
+  ContactTotals totals;
+};
+
+// A new contact: bonded ones belong to the initial tessellation, others are frictional only.
+struct NewContact {
+  std::uint64_t id;
+  double length;
+  bool bonded;
+};
+
+class LawGroup {
+ public:
+  virtual ~LawGroup() = default;
+  virtual std::string_view name() const = 0;
+  // Advance contacts [begin, end) of the context's contact array; they all belong to this group.
+  virtual void step(StepContext& ctx, std::size_t begin, std::size_t end) = 0;
+  // The group's contacts were rebuilt: new local index i came from old local index old_of_new[i],
+  // or is new (-1) and described by fresh[i].
+  virtual void rebuild(std::span<const std::int64_t> old_of_new,
+                       std::span<const NewContact> fresh) = 0;
+  virtual std::size_t size() const = 0;
+  // N/m, the larger of the normal and shear spring stiffness of local contact i (time step).
+  virtual double max_stiffness(std::size_t i) const = 0;
+  // J per m, elastic energy held in local contact i given its forces.
+  virtual double strain_energy(std::size_t i, double fn, double fs) const = 0;
+  // Bytes of law state and properties per contact (memory accounting).
+  virtual std::size_t bytes_per_contact() const = 0;
+  // Sampled properties of local contact i, named by property_names() (for reports and files).
+  virtual std::vector<double> properties(std::size_t i) const = 0;
+  virtual std::span<const std::string_view> property_names() const = 0;
+};
+
+// What a law accepts from the model file: each key with its unit and valid range.
+struct ParamSpec {
+  std::string_view key;
+  std::string_view unit;
+  std::string_view doc;
+  double min;  // the value (or a distribution's mean / scale) must be > min, or >= min if min_inclusive
+  bool min_inclusive;
+  double max;  // and <= max
+  double default_value;  // NaN: required unless optional
+  bool distributable;    // may be Weibull distributed per contact
+  bool optional;         // may be absent with no default (the law derives it)
+};
+
+using LawParams = std::map<std::string, model::Distribution, std::less<>>;
+
+struct LawInfo {
+  std::string_view name;
+  std::string_view doc;
+  std::span<const ParamSpec> params;
+  std::unique_ptr<LawGroup> (*make)(const LawParams& params, std::uint64_t seed);
+};
+
+inline constexpr double required = std::numeric_limits<double>::quiet_NaN();
+
+// All laws, one row each (src/laws/registry.cpp).
+std::span<const LawInfo> law_registry();
+const LawInfo* find_law(std::string_view name);
+
+}  // namespace vorodec::laws

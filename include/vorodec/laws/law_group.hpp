@@ -1,0 +1,112 @@
+#pragma once
+// LawGroupOf<Law>: the fused per-contact loop (geometry -> kinematics -> Law::evaluate -> force
+// record) shared by every law. Included only by the law sources, so Law::evaluate is inlined.
+#include <omp.h>
+
+#include <cstring>
+#include <vector>
+
+#include "vorodec/laws/contact_law.hpp"
+#include "vorodec/model/contact_geometry.hpp"
+
+namespace vorodec::laws {
+
+template <class Law>
+class LawGroupOf final : public LawGroup {
+ public:
+  LawGroupOf(const LawParams& params, std::uint64_t seed)
+      : params_(Law::params_from(params)), seed_(seed) {}
+
+  std::string_view name() const override { return Law::name; }
+  std::size_t size() const override { return props_.size(); }
+  double max_stiffness(std::size_t i) const override { return Law::max_stiffness(props_[i]); }
+  double strain_energy(std::size_t i, double fn, double fs) const override {
+    return Law::strain_energy(props_[i], fn, fs);
+  }
+  std::size_t bytes_per_contact() const override {
+    return sizeof(typename Law::Props) + sizeof(typename Law::State);
+  }
+
+  std::vector<double> properties(std::size_t i) const override {
+    static_assert(sizeof(typename Law::Props) == Law::property_names.size() * sizeof(double));
+    std::vector<double> v(Law::property_names.size());
+    std::memcpy(v.data(), &props_[i], sizeof(typename Law::Props));
+    return v;
+  }
+  std::span<const std::string_view> property_names() const override { return Law::property_names; }
+
+  void rebuild(std::span<const std::int64_t> old_of_new, std::span<const NewContact> fresh) override {
+    std::vector<typename Law::Props> props(old_of_new.size());
+    std::vector<typename Law::State> state(old_of_new.size());
+    for (std::size_t i = 0; i < old_of_new.size(); ++i) {
+      if (old_of_new[i] >= 0) {
+        props[i] = props_[static_cast<std::size_t>(old_of_new[i])];
+        state[i] = state_[static_cast<std::size_t>(old_of_new[i])];
+      } else {
+        props[i] = Law::sample(params_, seed_, fresh[i]);
+        state[i] = Law::initial_state(fresh[i]);
+      }
+    }
+    props_.swap(props);
+    state_.swap(state);
+  }
+
+  void step(StepContext& ctx, std::size_t begin, std::size_t end) override {
+    model::Blocks& bl = *ctx.blocks;
+    model::Contact* contacts = ctx.contacts;
+    model::ContactForce* forces = ctx.forces;
+    auto* props = props_.data();
+    auto* state = state_.data();
+    const double dt = ctx.dt;
+    double slip = 0.0, breakage = 0.0;
+#pragma omp parallel reduction(+ : slip, breakage)
+    {
+      auto& cracks = (*ctx.cracks_per_thread)[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(static)
+      for (std::size_t i = begin; i < end; ++i) {
+        model::Contact& c = contacts[i];
+        const model::ContactFrame f = model::contact_frame(bl, c);
+        const model::Point s{-f.n.y, f.n.x};
+        const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+        // Relative velocity of a with respect to b at the contact point.
+        const double vrx = (bl.vx[a] - bl.omega[a] * (f.point.y - bl.y[a])) -
+                           (bl.vx[b] - bl.omega[b] * (f.point.y - bl.y[b]));
+        const double vry = (bl.vy[a] + bl.omega[a] * (f.point.x - bl.x[a])) -
+                           (bl.vy[b] + bl.omega[b] * (f.point.x - bl.x[b]));
+        const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
+        const double fn0 = c.fn, fs0 = c.fs;
+        const LawResult r = Law::evaluate(k, props[i - begin], state[i - begin]);
+        // Energy a contact dissipates in one step: work done on it minus its strain-energy change.
+        const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
+        const double stored = Law::strain_energy(props[i - begin], r.fn, r.fs) -
+                              Law::strain_energy(props[i - begin], fn0, fs0);
+        c.gap = f.gap;
+        c.u_s += k.du_s;
+        c.fn = r.fn;
+        c.fs = r.fs;
+        if (r.event == ContactEvent::tensile_failure || r.event == ContactEvent::shear_failure) {
+          breakage += work - stored;
+          c.state = r.event == ContactEvent::tensile_failure ? model::ContactState::tensile_failed
+                                                             : model::ContactState::shear_failed;
+          cracks.push_back({ctx.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
+        } else {
+          slip += work - stored;
+          if (c.state <= model::ContactState::slipping)
+            c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
+                                                    : model::ContactState::intact;
+        }
+        forces[i] = {r.fn * f.n.x + r.fs * s.x, r.fn * f.n.y + r.fs * s.y, f.point.x, f.point.y};
+      }
+    }
+    ctx.totals.dissipated_slip += slip;
+    ctx.totals.dissipated_breakage += breakage;
+  }
+
+ private:
+  typename Law::Params params_;
+  std::uint64_t seed_;
+  std::vector<typename Law::Props> props_;
+  std::vector<typename Law::State> state_;
+};
+
+}  // namespace vorodec::laws

@@ -1,0 +1,74 @@
+#pragma once
+// Coulomb slip joint with tension cut-off, cohesion, dilation and residual strength
+// (PHYSICS section 4; UDEC "Coulomb slip with residual strength", 3DEC Mohr-Coulomb joint).
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "vorodec/laws/contact_law.hpp"
+
+namespace vorodec::laws {
+
+struct MohrCoulomb {
+  static constexpr std::string_view name = "mohr_coulomb";
+
+  struct Params {
+    model::Distribution jkn, jks, tension, cohesion, friction, dilation, residual_friction;
+  };
+  // Sampled per contact, already multiplied by the contact length where the law needs forces.
+  struct Props {
+    double kn, ks;          // N/m
+    double tension_force;   // N, tensile strength x length
+    double cohesion_force;  // N, cohesion x length
+    double tan_phi, tan_phi_res, tan_psi;
+  };
+  static constexpr std::array<std::string_view, 7> property_names{
+      "kn [N/m]", "ks [N/m]", "tension_force [N]", "cohesion_force [N]", "tan_phi", "tan_phi_res",
+      "tan_psi"};
+  struct State {
+    double fs;     // N, shear force carried into the next step
+    double u_dil;  // m, dilation opening
+    bool broken;   // tension and cohesion lost, residual friction applies
+  };
+
+  static Params params_from(const LawParams& p);
+  static Props sample(const Params& p, std::uint64_t seed, const NewContact& c);
+  static State initial_state(const NewContact& c) { return {0.0, 0.0, !c.bonded}; }
+  static double max_stiffness(const Props& p) { return std::max(p.kn, p.ks); }
+  static double strain_energy(const Props& p, double fn, double fs) {
+    return 0.5 * (fn * fn / p.kn + (p.ks > 0.0 ? fs * fs / p.ks : 0.0));
+  }
+
+  static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {
+    LawResult r{-p.kn * (k.gap - st.u_dil), 0.0, p.kn, p.ks, ContactEvent::none};
+    if (r.fn < -(st.broken ? 0.0 : p.tension_force)) {
+      if (!st.broken) r.event = ContactEvent::tensile_failure;
+      st.broken = true;
+      st.fs = 0.0;
+      r.fn = 0.0;  // an open joint carries neither tension (residual 0) nor shear
+      return r;
+    }
+    const double fs_trial = st.fs - p.ks * k.du_s;
+    double fmax = st.broken ? r.fn * p.tan_phi_res : p.cohesion_force + r.fn * p.tan_phi;
+    if (std::abs(fs_trial) > std::max(fmax, 0.0)) {
+      if (!st.broken) {
+        r.event = ContactEvent::shear_failure;
+        st.broken = true;
+        fmax = r.fn * p.tan_phi_res;
+      } else {
+        r.event = ContactEvent::slip;
+      }
+      st.fs = std::copysign(std::max(fmax, 0.0), fs_trial);
+      if (p.tan_psi > 0.0 && p.ks > 0.0) {
+        st.u_dil += std::abs((st.fs - fs_trial) / p.ks) * p.tan_psi;  // opening against Fn
+        r.fn = -p.kn * (k.gap - st.u_dil);
+      }
+    } else {
+      st.fs = fs_trial;
+    }
+    r.fs = st.fs;
+    return r;
+  }
+};
+
+}  // namespace vorodec::laws

@@ -1,0 +1,41 @@
+#pragma once
+// The specimen's boundary: platens, lateral edges for confinement and strain gauges.
+#include <cstdint>
+#include <vector>
+
+#include "vorodec/model/model.hpp"
+
+namespace vorodec::loading {
+
+// An edge of the initial lateral outline: block and the corner where the edge starts.
+struct BoundaryEdge {
+  std::uint32_t block;
+  std::uint32_t corner;
+};
+
+class SpecimenBoundary {
+ public:
+  // Finds platens, the lateral outline edges (left and right of the initial box) and the gauge
+  // blocks (lateral boundary blocks in the middle third of the height).
+  explicit SpecimenBoundary(const model::Model& model);
+
+  // Confining traction on the lateral edges, recomputed from the current geometry (follower load).
+  void apply_confinement(model::Model& model, double sigma3) const;
+  void set_platen_velocity(model::Model& model, double v_top) const;
+
+  double width() const { return width_; }    // m, initial
+  double height() const { return height_; }  // m, initial
+  int top_platen() const { return top_; }
+  int bottom_platen() const { return bottom_; }
+  const std::vector<BoundaryEdge>& lateral_edges() const { return edges_; }
+  const std::vector<std::uint32_t>& left_gauges() const { return left_; }
+  const std::vector<std::uint32_t>& right_gauges() const { return right_; }
+
+ private:
+  double width_ = 0, height_ = 0;
+  int top_ = -1, bottom_ = -1;
+  std::vector<BoundaryEdge> edges_;
+  std::vector<std::uint32_t> left_, right_;
+};
+
+}  // namespace vorodec::loading

@@ -1,0 +1,32 @@
+#pragma once
+// Specimen-scale stress and strain from platen reactions and boundary gauges (PHYSICS section 9),
+// in the rock-mechanics convention: compression and shortening positive.
+#include <span>
+
+#include "vorodec/loading/boundary.hpp"
+#include "vorodec/solver/solver.hpp"
+
+namespace vorodec::measure {
+
+struct SpecimenState {
+  double axial_strain = 0;       // shortening positive
+  double axial_stress = 0;       // Pa, from the platen reactions
+  double lateral_strain = 0;     // expansion negative
+  double volumetric_strain = 0;  // axial + lateral (2D)
+};
+
+SpecimenState measure_specimen(const model::Model& model, const loading::SpecimenBoundary& boundary,
+                               const solver::Solver& solver);
+
+struct ElasticConstants {
+  double youngs_modulus = 0;  // Pa, tangent modulus at 50 % of peak (fit over 40-60 %)
+  double poisson_ratio = 0;
+  bool valid = false;
+};
+
+// Fits the loading branch before the peak between 40 % and 60 % of the peak stress (ISRM 1979).
+ElasticConstants elastic_constants(std::span<const double> axial_strain,
+                                   std::span<const double> axial_stress,
+                                   std::span<const double> lateral_strain);
+
+}  // namespace vorodec::measure

@@ -1,0 +1,21 @@
+#pragma once
+// Turns a tessellation into rigid blocks (mass properties, rounded corners) plus loading platens.
+#include <span>
+
+#include "vorodec/geometry/tessellation.hpp"
+#include "vorodec/model/model.hpp"
+
+namespace vorodec::model {
+
+struct BuildSettings {
+  double density = 0.0;          // kg/m^3
+  double rounding_length = 0.0;  // m, UDEC corner rounding d
+  bool platens = true;           // rigid platens above and below the specimen
+};
+
+Model build_model(const geometry::Tessellation& tess, const BuildSettings& settings);
+
+// Appends one rigid block with the given world-frame polygon (counter-clockwise).
+void add_block(Model& model, std::span<const Point> polygon, double density, Group group);
+
+}  // namespace vorodec::model

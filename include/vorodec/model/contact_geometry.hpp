@@ -1,0 +1,79 @@
+#pragma once
+// Gap, normal and contact point between a rounded corner and a block edge with rounded ends
+// (PHYSICS 2.2). Used by the step kernel and by contact detection.
+#include <cmath>
+
+#include "vorodec/model/model.hpp"
+
+namespace vorodec::model {
+
+struct ContactFrame {
+  Point n;      // unit normal from the edge owner towards the corner owner
+  double gap;   // m, negative = overlap
+  Point point;  // contact point, middle of the gap
+  int side;     // -1: against the edge's start corner, 0: straight part, +1: against its end corner
+};
+
+// Corner arc (cA, rA) against edge v0 -> v1 whose end arcs are (c0, r0) and (c1, r1).
+inline ContactFrame corner_edge_frame(Point cA, double rA, Point v0, Point v1, Point c0, double r0,
+                                      Point c1, double r1) {
+  const Point e = v1 - v0;
+  const double inv_len = 1.0 / std::sqrt(dot(e, e));
+  const Point t = inv_len * e;
+  const double s = dot(cA - v0, t);
+  ContactFrame f;
+  f.side = s < dot(c0 - v0, t) ? -1 : (s > dot(c1 - v0, t) ? 1 : 0);
+  if (f.side == 0) {
+    f.n = {t.y, -t.x};  // outward normal of a counter-clockwise polygon's edge
+    f.gap = dot(cA - v0, f.n) - rA;
+  } else {
+    const Point cb = f.side < 0 ? c0 : c1;
+    const Point d = cA - cb;
+    const double dist = std::sqrt(dot(d, d));
+    f.n = (1.0 / dist) * d;
+    f.gap = dist - rA - (f.side < 0 ? r0 : r1);
+  }
+  f.point = cA - (rA + 0.5 * f.gap) * f.n;
+  return f;
+}
+
+// Geometry of contact c from the world arrays (Blocks::refresh_world), walking to a neighbouring
+// edge of b when the corner has moved past the arc at the end of its current edge (updates c.edge).
+inline ContactFrame contact_frame(const Blocks& bl, Contact& c) {
+  const Point cA = bl.world_centre[c.corner];
+  const double rA = bl.round_radius[c.corner];
+  for (int walk = 0;; ++walk) {
+    const std::uint32_t e0 = c.edge, e1 = bl.corner_next[e0];
+    const Point v0 = bl.world_corner[e0];
+    const Point t = bl.edge_inv_length[e0] * (bl.world_corner[e1] - v0);
+    const Point r = cA - v0;
+    const double s = dot(r, t);
+    ContactFrame f;
+    if (s >= bl.edge_s0[e0] && s <= bl.edge_s1[e0]) {  // the straight part: the common case
+      f.side = 0;
+      f.n = {t.y, -t.x};
+      f.gap = dot(r, f.n) - rA;
+      f.point = cA - (rA + 0.5 * f.gap) * f.n;
+      return f;
+    }
+    f.side = s < bl.edge_s0[e0] ? -1 : 1;
+    const std::uint32_t ec = f.side < 0 ? e0 : e1;
+    const Point d = cA - bl.world_centre[ec];
+    const double dist = std::sqrt(dot(d, d));
+    f.n = (1.0 / dist) * d;
+    f.gap = dist - rA - bl.round_radius[ec];
+    f.point = cA - (rA + 0.5 * f.gap) * f.n;
+    if (walk == 2) return f;
+    // Past the arc onto the neighbouring edge? Then that edge is the contact's feature.
+    if (f.side < 0) {
+      const std::uint32_t ep = bl.prev_corner(static_cast<std::uint32_t>(c.b), e0);
+      if (dot(d, v0 - bl.world_corner[ep]) >= 0.0) return f;
+      c.edge = ep;
+    } else {
+      if (dot(d, bl.world_corner[bl.corner_next[e1]] - bl.world_corner[e1]) <= 0.0) return f;
+      c.edge = e1;
+    }
+  }
+}
+
+}  // namespace vorodec::model

@@ -1,0 +1,81 @@
+#pragma once
+// The model as plain arrays: rigid blocks (struct of arrays) and point contacts (array of records).
+#include <cstdint>
+#include <vector>
+
+#include "vorodec/geometry/point.hpp"
+
+namespace vorodec::model {
+
+using geometry::Point;
+
+// Which body a block is: the specimen or one of the loading platens.
+enum class Group : std::int32_t { specimen = 0, bottom_platen = 1, top_platen = 2 };
+
+struct Blocks {
+  std::vector<double> x, y, theta;    // centroid (m) and rotation (rad)
+  std::vector<double> x0, y0;         // initial centroid (m)
+  std::vector<double> vx, vy, omega;  // m/s, rad/s, at the half step
+  std::vector<double> mass, inertia;  // inertial values (kg, kg m^2 per m), density scaling may raise them
+  std::vector<double> gravity_mass;   // true mass for body forces (kg per m)
+  std::vector<double> true_inertia;   // true polar moment of inertia (kg m^2 per m)
+  std::vector<double> fx, fy, moment; // applied boundary loads of the current step (N, N m)
+  std::vector<Group> group;
+  std::vector<std::uint8_t> prescribed;  // 1: velocity set by the load path, not integrated
+  // Shape, in the block's own frame (relative to the centroid at theta = 0), corners counter-clockwise.
+  std::vector<std::uint32_t> corner_begin;  // size blocks + 1
+  std::vector<Point> corner;                // unrounded corner
+  std::vector<Point> round_centre;          // centre of the rounded corner's arc
+  std::vector<double> round_radius;         // radius of that arc (m)
+  std::vector<std::uint32_t> corner_next;    // index of the next corner of the same block
+  // Constants of the edge that starts at each corner: 1 / length, and where its straight part
+  // (between the tangent points of the end arcs) begins and ends along it (m).
+  std::vector<double> edge_inv_length, edge_s0, edge_s1;
+  // Refreshed once per step by refresh_world(): cosine and sine of theta, world corner positions
+  // and world arc centres.
+  std::vector<double> cos_t, sin_t;
+  std::vector<Point> world_corner, world_centre;
+
+  std::size_t size() const { return x.size(); }
+  std::uint32_t next_corner(std::uint32_t, std::uint32_t c) const { return corner_next[c]; }
+  std::uint32_t prev_corner(std::uint32_t block, std::uint32_t c) const {
+    return c == corner_begin[block] ? corner_begin[block + 1] - 1 : c - 1;
+  }
+  void refresh_world();
+  Point to_world(std::uint32_t block, Point local) const {
+    const double c = cos_t[block], s = sin_t[block];
+    return {x[block] + c * local.x - s * local.y, y[block] + s * local.x + c * local.y};
+  }
+};
+
+enum class ContactState : std::uint8_t { intact = 0, slipping = 1, tensile_failed = 2, shear_failed = 3 };
+
+// A rounded corner of block a against block b's edge starting at corner `edge` (or, past the edge's
+// straight part, against that edge's end corner). The normal points from b to a.
+struct Contact {
+  std::int32_t a = 0, b = 0;
+  std::uint32_t corner = 0;  // global corner index of a
+  std::uint32_t edge = 0;    // global corner index where b's edge starts
+  std::uint64_t id = 0;      // stable id: keys the random stream of sampled properties
+  double length = 0.0;       // m, joint length this contact represents
+  double gap = 0.0;          // m, current gap (negative = overlap)
+  double u_s = 0.0;          // m, accumulated shear displacement
+  double fn = 0.0, fs = 0.0; // N per m thickness, normal force positive in compression
+  std::uint16_t law = 0;     // index of the contact law group that owns it
+  ContactState state = ContactState::intact;
+  std::uint8_t bonded = 0;   // 1: part of the initial tessellation (cohesive until it fails)
+};
+
+// Force of one contact on block a, applied at point (px, py); block b receives the opposite.
+struct ContactForce {
+  double fx = 0, fy = 0, px = 0, py = 0;
+};
+
+struct Model {
+  Blocks blocks;
+  std::vector<Contact> contacts;
+  double rounding_length = 0.0;  // m, UDEC corner rounding d
+  double thickness = 1.0;        // m, out of plane
+};
+
+}  // namespace vorodec::model

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs vorodec's Debian 12 dependencies. Idempotent: packages already present are skipped.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config ccache
+  libcgal-dev libeigen3-dev libsuitesparse-dev libfmt-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
+  libvtk9-dev python3-vtk9 python3-matplotlib python3-numpy
+  xvfb xauth
+  # pvbatch for tests/run_paraview_check.sh (~37 packages, removes nothing). Its python3-paraview
+  # conflicts with python3-vtk9 (needed by libvtk9-dev): never install it, the check unpacks its
+  # .deb privately.
+  paraview
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

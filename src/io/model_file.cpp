@@ -1,0 +1,233 @@
+#include "vorodec/io/model_file.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "toml_section.hpp"
+
+namespace vorodec::io {
+
+namespace {
+
+bool in_range(const laws::ParamSpec& spec, double v) {
+  return (spec.min_inclusive ? v >= spec.min : v > spec.min) && v <= spec.max;
+}
+
+std::string range_text(const laws::ParamSpec& spec) {
+  return spec.max < 1e299 ? fmt::format("{} {} and <= {} {}", spec.min_inclusive ? ">=" : ">",
+                                        spec.min, spec.max, spec.unit)
+                          : fmt::format("{} {} {}", spec.min_inclusive ? ">=" : ">", spec.min,
+                                        spec.unit);
+}
+
+// A law property: a number, or { weibull_shape = m, mean = a0 } / { weibull_shape = m, scale = l }.
+model::Distribution read_property(TomlSection& sec, const laws::ParamSpec& spec) {
+  const toml::node* n = sec.node(spec.key);
+  if (n->is_table()) {
+    if (!spec.distributable) sec.fail(spec.key, "cannot be distributed");
+    TomlSection d(*n->as_table(), sec.key_path(spec.key), sec.file());
+    const double m = d.positive("weibull_shape", laws::required);
+    const bool has_mean = d.has("mean"), has_scale = d.has("scale");
+    if (has_mean == has_scale)
+      sec.fail(spec.key, "give exactly one of 'mean' (a0, the distribution's mean) and 'scale'");
+    const double a = d.number(has_mean ? "mean" : "scale", laws::required);
+    if (!in_range(spec, a))
+      d.fail(has_mean ? "mean" : "scale", fmt::format("must be {} (got {})", range_text(spec), a));
+    d.finish();
+    return has_mean ? model::Distribution::weibull_from_mean(m, a)
+                    : model::Distribution::weibull_from_scale(m, a);
+  }
+  const double v = sec.number(spec.key, laws::required);
+  if (!in_range(spec, v)) sec.fail(spec.key, fmt::format("must be {} (got {})", range_text(spec), v));
+  return model::Distribution::constant(v);
+}
+
+LawChoice read_law(TomlSection& sec, const std::string& default_law) {
+  LawChoice choice;
+  choice.name = sec.string("law", &default_law);
+  const laws::LawInfo* info = laws::find_law(choice.name);
+  if (!info) {
+    std::string names;
+    for (const auto& l : laws::law_registry()) names += fmt::format(" '{}'", l.name);
+    sec.fail("law", fmt::format("unknown contact law '{}' (known:{})", choice.name, names));
+  }
+  for (const laws::ParamSpec& spec : info->params) {
+    if (sec.has(spec.key)) {
+      choice.params.emplace(std::string(spec.key), read_property(sec, spec));
+    } else if (!std::isnan(spec.default_value)) {
+      choice.params.emplace(std::string(spec.key), model::Distribution::constant(spec.default_value));
+    } else if (!spec.optional) {
+      sec.fail(spec.key, fmt::format("required by law '{}' ({}, {})", choice.name, spec.doc,
+                                     spec.unit));
+    }
+  }
+  return choice;
+}
+
+void read_specimen(TomlSection sec, ModelConfig& cfg) {
+  cfg.specimen_line = sec.line();
+  if (sec.has("file")) {
+    std::filesystem::path p = sec.string("file", nullptr);
+    if (p.is_relative()) p = cfg.file.parent_path() / p;
+    if (!std::filesystem::exists(p))
+      sec.fail("file", fmt::format("specimen file '{}' does not exist", p.string()));
+    cfg.specimen_file = p;
+    sec.finish();  // a prepared specimen carries its own geometry: no other keys allowed
+    return;
+  }
+  auto& t = cfg.tessellation;
+  const std::string rect = "rectangle";
+  const std::string shape = sec.string("shape", &rect);
+  if (shape == "rectangle") {
+    t.outline.kind = geometry::OutlineKind::rectangle;
+    t.outline.width = sec.positive("width", laws::required);
+    t.outline.height = sec.positive("height", laws::required);
+  } else if (shape == "disc") {
+    t.outline.kind = geometry::OutlineKind::disc;
+    t.outline.diameter = sec.positive("diameter", laws::required);
+  } else {
+    sec.fail("shape", fmt::format("must be \"rectangle\" or \"disc\" (got \"{}\")", shape));
+  }
+  if (sec.has("block_count") == sec.has("mean_edge_length"))
+    sec.fail("block_count", "give exactly one of 'block_count' and 'mean_edge_length'");
+  t.block_count = static_cast<int>(sec.integer("block_count", 0, 2));
+  t.mean_edge_length = sec.has("mean_edge_length") ? sec.positive("mean_edge_length", 0) : 0.0;
+  t.lloyd_iterations = static_cast<int>(sec.integer("lloyd_iterations", 0, 0));
+  t.min_edge_length = sec.non_negative("min_edge_length", 0.0);
+  sec.finish();
+}
+
+loading::Stage read_stage(TomlSection sec, std::size_t index) {
+  loading::Stage st;
+  const std::string fallback = fmt::format("stage {}", index + 1);
+  st.name = sec.string("name", &fallback);
+  const std::string vel = "platen_velocity";
+  const std::string control = sec.string("control", &vel);
+  if (control == "platen_velocity") {
+    st.control = loading::Control::platen_velocity;
+    st.platen_velocity = sec.number("platen_velocity", laws::required);
+  } else if (control == "axial_stress") {
+    st.control = loading::Control::axial_stress;
+    st.target_stress = sec.non_negative("target_stress", laws::required);
+    st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
+  } else {
+    sec.fail("control", fmt::format("must be \"platen_velocity\" or \"axial_stress\" (got \"{}\")",
+                                    control));
+  }
+  st.ramp_time = sec.non_negative("ramp_time", 0.0);
+  const double nan = loading::StageEnd::unset;
+  st.end.axial_strain = sec.has("end_axial_strain") ? sec.number("end_axial_strain", nan) : nan;
+  if (sec.has("end_post_peak_fraction")) {
+    st.end.post_peak_fraction = sec.number("end_post_peak_fraction", nan);
+    if (!(st.end.post_peak_fraction > 0 && st.end.post_peak_fraction < 1))
+      sec.fail("end_post_peak_fraction", "must be between 0 and 1");
+  }
+  st.end.duration = sec.has("end_time") ? sec.positive("end_time", nan) : nan;
+  if (std::isnan(st.end.axial_strain) && std::isnan(st.end.post_peak_fraction) &&
+      std::isnan(st.end.duration) && st.control == loading::Control::platen_velocity)
+    sec.fail("end_axial_strain",
+             "a stage needs an end condition: end_axial_strain, end_post_peak_fraction or end_time");
+  if (st.control == loading::Control::axial_stress) st.end.stress = st.target_stress;
+  sec.finish();
+  return st;
+}
+
+}  // namespace
+
+ModelConfig read_model_file(const std::filesystem::path& file) {
+  ModelConfig cfg;
+  cfg.file = file;
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw ModelFileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
+                                     e.source().begin.column, e.description()));
+  } catch (const std::exception& e) {
+    throw ModelFileError(fmt::format("{}: cannot read: {}", file.string(), e.what()));
+  }
+  TomlSection top(root, "", file.string());
+  const std::string empty;
+  cfg.title = top.string("title", &empty);
+  cfg.seed = static_cast<std::uint64_t>(top.integer("seed", 1, 0));
+  read_specimen(top.sub("specimen"), cfg);
+  cfg.tessellation.seed = cfg.seed;
+
+  TomlSection blocks = top.sub("blocks");
+  cfg.density = blocks.positive("density", laws::required);
+  blocks.finish();
+
+  TomlSection joints = top.sub("joints");
+  cfg.joints = read_law(joints, "mohr_coulomb");
+  joints.finish();
+
+  // Platens: frictionless, no tension, as stiff as the joints unless given.
+  const double jkn_mean = cfg.joints.params.count("jkn") ? cfg.joints.params.at("jkn").mean() : 0;
+  cfg.platens.name = "mohr_coulomb";
+  if (top.has("platens")) {
+    TomlSection p = top.sub("platens");
+    cfg.platens.params["jkn"] = model::Distribution::constant(p.positive("jkn", jkn_mean));
+    cfg.platens.params["friction"] =
+        model::Distribution::constant(p.non_negative("friction", 0.0));
+    if (cfg.platens.params["friction"].value >= 90) p.fail("friction", "must be < 90 deg");
+    p.finish();
+  } else {
+    cfg.platens.params["jkn"] = model::Distribution::constant(jkn_mean);
+    cfg.platens.params["friction"] = model::Distribution::constant(0.0);
+  }
+  for (const char* k : {"jks", "tension", "cohesion", "dilation"})
+    cfg.platens.params[k] = model::Distribution::constant(0.0);
+
+  static const toml::table no_table;
+  TomlSection contact =
+      top.has("contact") ? top.sub("contact") : TomlSection(no_table, "contact", file.string());
+  cfg.rounding_length = contact.has("rounding_length") ? contact.positive("rounding_length", 0) : 0;
+  cfg.solver.contact_tolerance = contact.has("tolerance") ? contact.positive("tolerance", 0) : 0;
+  contact.finish();
+
+  if (top.has("solver")) {
+    TomlSection s = top.sub("solver");
+    cfg.solver.local_damping = s.non_negative("local_damping", 0.8);
+    if (cfg.solver.local_damping >= 1) s.fail("local_damping", "must be < 1");
+    cfg.solver.safety_factor = s.positive("safety_factor", 0.8);
+    if (cfg.solver.safety_factor > 1) s.fail("safety_factor", "must be <= 1");
+    cfg.solver.time_step = s.non_negative("time_step", 0.0);
+    cfg.max_steps = s.integer("max_steps", 20'000'000, 1);
+    cfg.solver.max_detection_interval =
+        static_cast<int>(s.integer("max_detection_interval", 200, 1));
+    if (const toml::node* g = s.node("gravity")) {
+      const toml::array* a = g->as_array();
+      if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
+        s.fail_at(g, "gravity", "must be an array of two numbers [gx, gy] in m/s^2");
+      cfg.solver.gravity = {(*a)[0].value<double>().value(), (*a)[1].value<double>().value()};
+    }
+    s.finish();
+  } else {
+    cfg.max_steps = 20'000'000;
+  }
+
+  if (top.has("loading")) {
+    TomlSection l = top.sub("loading");
+    cfg.load_path.confining_stress = l.non_negative("confining_stress", 0.0);
+    l.finish();
+  }
+  const toml::node* stages = top.node("stage");
+  if (!stages || !stages->is_array_of_tables())
+    top.fail("stage", "at least one [[stage]] table is required");
+  const toml::array& list = *stages->as_array();
+  for (std::size_t i = 0; i < list.size(); ++i)
+    cfg.load_path.stages.push_back(read_stage(
+        TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), file.string()), i));
+
+  if (top.has("output")) {
+    TomlSection o = top.sub("output");
+    cfg.output.history_steps = o.integer("history_steps", 200, 1);
+    cfg.output.vtk_steps = o.integer("vtk_steps", 20000, 1);
+    o.finish();
+  }
+  top.finish();
+  return cfg;
+}
+
+}  // namespace vorodec::io

@@ -1,0 +1,118 @@
+#include "toml_section.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace vorodec::io {
+
+namespace {
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
+TomlSection::TomlSection(const toml::table& table, std::string path, std::string file)
+    : table_(table), path_(std::move(path)), file_(std::move(file)) {}
+
+std::string TomlSection::key_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+void TomlSection::fail(std::string_view key, const std::string& message) const {
+  fail_at(table_.get(key), key, message);
+}
+
+void TomlSection::fail_at(const toml::node* where, std::string_view key,
+                          const std::string& message) const {
+  const auto line = where ? where->source().begin.line : table_.source().begin.line;
+  throw ModelFileError(fmt::format("{}:{}: key '{}': {}", file_, line, key_path(key), message));
+}
+
+const toml::node* TomlSection::node(std::string_view key) {
+  used_.insert(std::string(key));
+  return table_.get(key);
+}
+
+double TomlSection::number(std::string_view key, double fallback) {
+  const toml::node* n = node(key);
+  if (!n) {
+    if (std::isnan(fallback)) fail(key, "required key is missing");
+    return fallback;
+  }
+  const auto v = n->value<double>();
+  if (!v || !n->is_number()) fail(key, "must be a number");
+  if (!std::isfinite(*v)) fail(key, "must be finite");
+  return *v;
+}
+
+double TomlSection::positive(std::string_view key, double fallback) {
+  const double v = number(key, fallback);
+  if (!(v > 0)) fail(key, fmt::format("must be > 0 (got {})", v));
+  return v;
+}
+
+double TomlSection::non_negative(std::string_view key, double fallback) {
+  const double v = number(key, fallback);
+  if (!(v >= 0)) fail(key, fmt::format("must be >= 0 (got {})", v));
+  return v;
+}
+
+long TomlSection::integer(std::string_view key, long fallback, long min) {
+  const toml::node* n = node(key);
+  if (!n) return fallback;
+  const auto v = n->value_exact<std::int64_t>();
+  if (!v) fail(key, "must be an integer");
+  if (*v < min) fail(key, fmt::format("must be >= {} (got {})", min, *v));
+  return static_cast<long>(*v);
+}
+
+std::string TomlSection::string(std::string_view key, const std::string* fallback) {
+  const toml::node* n = node(key);
+  if (!n) {
+    if (!fallback) fail(key, "required key is missing");
+    return *fallback;
+  }
+  const auto v = n->value_exact<std::string>();
+  if (!v) fail(key, "must be a string");
+  return *v;
+}
+
+TomlSection TomlSection::sub(std::string_view key) {
+  const toml::node* n = node(key);
+  if (!n) fail(key, "required table is missing");
+  if (!n->is_table()) fail(key, "must be a table");
+  return TomlSection(*n->as_table(), key_path(key), file_);
+}
+
+void TomlSection::finish() const {
+  for (const auto& [k, v] : table_) {
+    if (used_.count(k.str())) continue;
+    std::string hint;
+    std::size_t best = 3;
+    for (const auto& u : used_) {
+      const std::size_t d = edit_distance(k.str(), u);
+      if (d < best) {
+        best = d;
+        hint = fmt::format(" (did you mean '{}'?)", u);
+      }
+    }
+    throw ModelFileError(fmt::format("{}:{}: key '{}': unknown key{}", file_, k.source().begin.line,
+                                     key_path(k.str()), hint));
+  }
+}
+
+}  // namespace vorodec::io

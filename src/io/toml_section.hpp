@@ -1,0 +1,43 @@
+#pragma once
+// Reads one TOML table key by key, remembering which keys were used, so that anything left over
+// (a misspelled key) is reported with its line. Every error names file, key and line.
+#include <toml++/toml.h>
+
+#include <set>
+#include <string>
+
+#include "vorodec/io/model_file.hpp"
+
+namespace vorodec::io {
+
+class TomlSection {
+ public:
+  TomlSection(const toml::table& table, std::string path, std::string file);
+
+  bool has(std::string_view key) const { return table_.contains(key); }
+  double number(std::string_view key, double fallback);  // fallback NaN: required
+  double positive(std::string_view key, double fallback);
+  double non_negative(std::string_view key, double fallback);
+  long integer(std::string_view key, long fallback, long min);
+  std::string string(std::string_view key, const std::string* fallback);
+  const toml::node* node(std::string_view key);  // marks used; nullptr if absent
+  TomlSection sub(std::string_view key);         // a required sub-table
+
+  // Throws for any key that was never asked for (with a "did you mean" hint).
+  void finish() const;
+
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  [[noreturn]] void fail_at(const toml::node* where, std::string_view key,
+                            const std::string& message) const;
+  std::string key_path(std::string_view key) const;
+  const toml::table& table() const { return table_; }
+  const std::string& file() const { return file_; }
+  int line() const { return static_cast<int>(table_.source().begin.line); }
+
+ private:
+  const toml::table& table_;
+  std::string path_, file_;
+  std::set<std::string, std::less<>> used_;
+};
+
+}  // namespace vorodec::io

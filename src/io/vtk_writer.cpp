@@ -1,0 +1,264 @@
+// ParaView output. The only translation unit that includes VTK headers.
+#include "vorodec/io/vtk_writer.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkType.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <utility>
+
+namespace vorodec::io {
+namespace {
+
+constexpr std::array<const char*, 3> kSeries = {"blocks", "contacts", "cracks"};
+
+std::string frame_file(const char* series, std::size_t frame) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s_%06zu.vtp", series, frame);
+  return buf;
+}
+
+void require_size(std::size_t actual, std::size_t expected, const char* what) {
+  if (actual != expected) {
+    throw std::invalid_argument("VtkSeriesWriter: VtkFrame::" + std::string(what) + " has " +
+                                std::to_string(actual) + " entries, expected " +
+                                std::to_string(expected));
+  }
+}
+
+std::size_t block_count(const VtkFrame& f) {
+  if (f.block_offsets.empty()) {
+    require_size(f.block_points.size(), 0, "block_points (no block_offsets)");
+    return 0;
+  }
+  if (f.block_offsets.front() != 0) {
+    throw std::invalid_argument("VtkSeriesWriter: VtkFrame::block_offsets must start at 0");
+  }
+  for (std::size_t i = 1; i < f.block_offsets.size(); ++i) {
+    if (f.block_offsets[i] < f.block_offsets[i - 1] + 3) {
+      throw std::invalid_argument("VtkSeriesWriter: block " + std::to_string(i - 1) +
+                                  " has fewer than 3 corners or decreasing block_offsets");
+    }
+  }
+  require_size(f.block_points.size(), f.block_offsets.back(), "block_points");
+  return f.block_offsets.size() - 1;
+}
+
+void validate(const VtkFrame& f) {
+  const std::size_t nb = block_count(f);
+  require_size(f.block_id.size(), nb, "block_id");
+  require_size(f.block_group.size(), nb, "block_group");
+  require_size(f.block_velocity.size(), nb, "block_velocity");
+  require_size(f.block_displacement.size(), nb, "block_displacement");
+  const std::size_t nc = f.contact_point.size();
+  require_size(f.contact_a.size(), nc, "contact_a");
+  require_size(f.contact_b.size(), nc, "contact_b");
+  require_size(f.contact_normal_force.size(), nc, "contact_normal_force");
+  require_size(f.contact_shear_force.size(), nc, "contact_shear_force");
+  require_size(f.contact_state.size(), nc, "contact_state");
+  const std::size_t nk = f.crack_begin.size();
+  require_size(f.crack_end.size(), nk, "crack_end");
+  require_size(f.crack_type.size(), nk, "crack_type");
+  require_size(f.crack_time.size(), nk, "crack_time");
+}
+
+vtkNew<vtkPoints> make_points(std::size_t n) {
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  return pts;
+}
+
+void set_point(vtkPoints* pts, std::size_t i, geometry::Point p) {
+  pts->SetPoint(static_cast<vtkIdType>(i), p.x, p.y, 0.0);
+}
+
+vtkNew<vtkIntArray> int_array(const char* name, const std::vector<std::int32_t>& v) {
+  vtkNew<vtkIntArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(1);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), v[i]);
+  return a;
+}
+
+vtkNew<vtkDoubleArray> double_array(const char* name, const std::vector<double>& v) {
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(1);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), v[i]);
+  return a;
+}
+
+// 3-component vector (z = 0) so ParaView offers magnitude and glyphs.
+vtkNew<vtkDoubleArray> vector_array(const char* name, const std::vector<geometry::Point>& v) {
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double t[3] = {v[i].x, v[i].y, 0.0};
+    a->SetTypedTuple(static_cast<vtkIdType>(i), t);
+  }
+  return a;
+}
+
+void add_time(vtkPolyData* pd, double time) {
+  vtkNew<vtkDoubleArray> t;
+  t->SetName("TimeValue");
+  t->SetNumberOfTuples(1);
+  t->SetValue(0, time);
+  pd->GetFieldData()->AddArray(t);
+}
+
+vtkNew<vtkPolyData> blocks_polydata(const VtkFrame& f) {
+  const std::size_t nb = f.block_id.size();
+  auto pts = make_points(f.block_points.size());
+  for (std::size_t i = 0; i < f.block_points.size(); ++i) set_point(pts, i, f.block_points[i]);
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(static_cast<vtkIdType>(nb), static_cast<vtkIdType>(f.block_points.size()));
+  std::vector<vtkIdType> ids;
+  for (std::size_t b = 0; b < nb; ++b) {
+    ids.clear();
+    for (std::uint32_t k = f.block_offsets[b]; k < f.block_offsets[b + 1]; ++k) ids.push_back(k);
+    polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetPolys(polys);
+  auto* cd = pd->GetCellData();
+  cd->AddArray(int_array("id", f.block_id));
+  cd->AddArray(int_array("group", f.block_group));
+  cd->AddArray(vector_array("velocity", f.block_velocity));
+  cd->AddArray(vector_array("displacement", f.block_displacement));
+  add_time(pd, f.time);
+  return pd;
+}
+
+// One 3-point polyline per contact: centroid A -> contact point -> centroid B.
+vtkNew<vtkPolyData> contacts_polydata(const VtkFrame& f) {
+  const std::size_t nc = f.contact_point.size();
+  auto pts = make_points(3 * nc);
+  vtkNew<vtkCellArray> lines;
+  lines->AllocateExact(static_cast<vtkIdType>(nc), static_cast<vtkIdType>(3 * nc));
+  for (std::size_t c = 0; c < nc; ++c) {
+    set_point(pts, 3 * c + 0, f.contact_a[c]);
+    set_point(pts, 3 * c + 1, f.contact_point[c]);
+    set_point(pts, 3 * c + 2, f.contact_b[c]);
+    const auto base = static_cast<vtkIdType>(3 * c);
+    const vtkIdType ids[3] = {base, base + 1, base + 2};
+    lines->InsertNextCell(3, ids);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetLines(lines);
+  auto* cd = pd->GetCellData();
+  cd->AddArray(double_array("normal_force", f.contact_normal_force));
+  cd->AddArray(double_array("shear_force", f.contact_shear_force));
+  cd->AddArray(int_array("state", f.contact_state));
+  add_time(pd, f.time);
+  return pd;
+}
+
+vtkNew<vtkPolyData> cracks_polydata(const VtkFrame& f) {
+  const std::size_t nk = f.crack_begin.size();
+  auto pts = make_points(2 * nk);
+  vtkNew<vtkCellArray> lines;
+  lines->AllocateExact(static_cast<vtkIdType>(nk), static_cast<vtkIdType>(2 * nk));
+  for (std::size_t k = 0; k < nk; ++k) {
+    set_point(pts, 2 * k + 0, f.crack_begin[k]);
+    set_point(pts, 2 * k + 1, f.crack_end[k]);
+    const auto base = static_cast<vtkIdType>(2 * k);
+    const vtkIdType ids[2] = {base, base + 1};
+    lines->InsertNextCell(2, ids);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetLines(lines);
+  auto* cd = pd->GetCellData();
+  cd->AddArray(int_array("type", f.crack_type));
+  cd->AddArray(double_array("time", f.crack_time));
+  add_time(pd, f.time);
+  return pd;
+}
+
+void write_vtp(vtkPolyData* pd, const std::filesystem::path& file) {
+  vtkNew<vtkXMLPolyDataWriter> w;
+  w->SetFileName(file.string().c_str());
+  w->SetInputData(pd);
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  w->SetCompressorTypeToZLib();
+  w->SetHeaderTypeToUInt64();
+  if (w->Write() != 1 || w->GetErrorCode() != 0) {
+    throw std::runtime_error("VtkSeriesWriter: cannot write " + file.string());
+  }
+}
+
+}  // namespace
+
+VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir) : dir_(std::move(dir)) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (ec || !std::filesystem::is_directory(dir_)) {
+    throw std::runtime_error("VtkSeriesWriter: cannot create output directory '" + dir_.string() +
+                             "'" + (ec ? ": " + ec.message() : std::string(": not a directory")));
+  }
+}
+
+void VtkSeriesWriter::write(const VtkFrame& frame) {
+  validate(frame);
+  const std::size_t n = times_.size();
+  write_vtp(blocks_polydata(frame), dir_ / frame_file(kSeries[0], n));
+  write_vtp(contacts_polydata(frame), dir_ / frame_file(kSeries[1], n));
+  write_vtp(cracks_polydata(frame), dir_ / frame_file(kSeries[2], n));
+  times_.push_back(frame.time);
+  write_collections();
+}
+
+// VTK 9.1 has no PVD writer. Each collection goes to a temporary file renamed over the old one, so
+// a reader never sees a half-written .pvd.
+void VtkSeriesWriter::write_collections() const {
+  for (const char* series : kSeries) {
+    const auto target = dir_ / (std::string(series) + ".pvd");
+    auto tmp = target;
+    tmp += ".tmp";
+    {
+      std::ofstream out(tmp, std::ios::trunc);
+      out << "<?xml version=\"1.0\"?>\n"
+             "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+             "  <Collection>\n";
+      for (std::size_t i = 0; i < times_.size(); ++i) {
+        char t[40];
+        std::snprintf(t, sizeof t, "%.17g", times_[i]);
+        out << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << frame_file(series, i)
+            << "\"/>\n";
+      }
+      out << "  </Collection>\n</VTKFile>\n";
+      out.flush();
+      if (!out) throw std::runtime_error("VtkSeriesWriter: cannot write " + tmp.string());
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, target, ec);
+    if (ec) {
+      throw std::runtime_error("VtkSeriesWriter: cannot replace " + target.string() + ": " +
+                               ec.message());
+    }
+  }
+}
+
+}  // namespace vorodec::io

@@ -1,0 +1,22 @@
+#include <array>
+
+#include "vorodec/laws/contact_law.hpp"
+
+namespace vorodec::laws {
+
+// One row per law; each law's source defines its LawInfo.
+extern const LawInfo mohr_coulomb_info;
+extern const LawInfo linear_elastic_info;
+
+std::span<const LawInfo> law_registry() {
+  static const std::array<LawInfo, 2> registry{mohr_coulomb_info, linear_elastic_info};
+  return registry;
+}
+
+const LawInfo* find_law(std::string_view name) {
+  for (const LawInfo& info : law_registry())
+    if (info.name == name) return &info;
+  return nullptr;
+}
+
+}  // namespace vorodec::laws

@@ -1,0 +1,73 @@
+#include "vorodec/loading/boundary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vorodec::loading {
+
+using model::Group;
+using model::Point;
+
+SpecimenBoundary::SpecimenBoundary(const model::Model& model) {
+  const auto& bl = model.blocks;
+  double x0 = std::numeric_limits<double>::max(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (std::uint32_t b = 0; b < bl.size(); ++b) {
+    if (bl.group[b] == Group::top_platen) top_ = static_cast<int>(b);
+    if (bl.group[b] == Group::bottom_platen) bottom_ = static_cast<int>(b);
+    if (bl.group[b] != Group::specimen) continue;
+    for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
+      const Point p{bl.x[b] + bl.corner[c].x, bl.y[b] + bl.corner[c].y};
+      x0 = std::min(x0, p.x);
+      x1 = std::max(x1, p.x);
+      y0 = std::min(y0, p.y);
+      y1 = std::max(y1, p.y);
+    }
+  }
+  width_ = x1 - x0;
+  height_ = y1 - y0;
+  const double tol = 1e-9 * std::max(width_, height_);
+  for (std::uint32_t b = 0; b < bl.size(); ++b) {
+    if (bl.group[b] != Group::specimen) continue;
+    bool left = false, right = false;
+    for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
+      const std::uint32_t n = bl.next_corner(b, c);
+      const double xa = bl.x[b] + bl.corner[c].x, xb = bl.x[b] + bl.corner[n].x;
+      const bool on_left = std::abs(xa - x0) < tol && std::abs(xb - x0) < tol;
+      const bool on_right = std::abs(xa - x1) < tol && std::abs(xb - x1) < tol;
+      if (on_left || on_right) edges_.push_back({b, c});
+      left |= on_left;
+      right |= on_right;
+    }
+    const bool middle = std::abs(bl.y[b] - (y0 + 0.5 * height_)) < height_ / 6.0;
+    if (middle && left) left_.push_back(b);
+    if (middle && right) right_.push_back(b);
+  }
+}
+
+void SpecimenBoundary::apply_confinement(model::Model& model, double sigma3) const {
+  auto& bl = model.blocks;
+  for (const BoundaryEdge& e : edges_) {
+    bl.fx[e.block] = bl.fy[e.block] = bl.moment[e.block] = 0.0;
+  }
+  if (sigma3 == 0.0) return;
+  for (const BoundaryEdge& e : edges_) {
+    const std::uint32_t b = e.block;
+    const Point p0 = bl.to_world(b, bl.corner[e.corner]);
+    const Point p1 = bl.to_world(b, bl.corner[bl.next_corner(b, e.corner)]);
+    // f = -sigma3 n L with n L = (dy, -dx) for a counter-clockwise edge.
+    const Point f{-sigma3 * (p1.y - p0.y), sigma3 * (p1.x - p0.x)};
+    const Point mid = 0.5 * (p0 + p1);
+    bl.fx[b] += f.x;
+    bl.fy[b] += f.y;
+    bl.moment[b] += (mid.x - bl.x[b]) * f.y - (mid.y - bl.y[b]) * f.x;
+  }
+}
+
+void SpecimenBoundary::set_platen_velocity(model::Model& model, double v_top) const {
+  auto& bl = model.blocks;
+  if (top_ >= 0) bl.vy[static_cast<std::size_t>(top_)] = -v_top;
+  if (bottom_ >= 0) bl.vy[static_cast<std::size_t>(bottom_)] = 0.0;
+}
+
+}  // namespace vorodec::loading

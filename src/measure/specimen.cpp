@@ -1,0 +1,72 @@
+#include "vorodec/measure/specimen.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace vorodec::measure {
+
+namespace {
+double mean_dx(const model::Blocks& bl, const std::vector<std::uint32_t>& blocks) {
+  if (blocks.empty()) return 0.0;
+  double s = 0;
+  for (std::uint32_t b : blocks) s += bl.x[b] - bl.x0[b];
+  return s / static_cast<double>(blocks.size());
+}
+
+// Least-squares slope of y against x.
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const auto n = static_cast<double>(x.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sx += x[i];
+    sy += y[i];
+    sxx += x[i] * x[i];
+    sxy += x[i] * y[i];
+  }
+  const double den = n * sxx - sx * sx;
+  return den != 0.0 ? (n * sxy - sx * sy) / den : 0.0;
+}
+}  // namespace
+
+SpecimenState measure_specimen(const model::Model& model, const loading::SpecimenBoundary& boundary,
+                               const solver::Solver& solver) {
+  const auto& bl = model.blocks;
+  SpecimenState s;
+  const int top = boundary.top_platen(), bot = boundary.bottom_platen();
+  if (top >= 0 && bot >= 0) {
+    const auto t = static_cast<std::size_t>(top), b = static_cast<std::size_t>(bot);
+    s.axial_strain = ((bl.y[b] - bl.y0[b]) - (bl.y[t] - bl.y0[t])) / boundary.height();
+    s.axial_stress = (solver.contact_force(t).y - solver.contact_force(b).y) /
+                     (2.0 * boundary.width() * model.thickness);
+  }
+  s.lateral_strain =
+      -(mean_dx(bl, boundary.right_gauges()) - mean_dx(bl, boundary.left_gauges())) /
+      boundary.width();
+  s.volumetric_strain = s.axial_strain + s.lateral_strain;
+  return s;
+}
+
+ElasticConstants elastic_constants(std::span<const double> axial_strain,
+                                   std::span<const double> axial_stress,
+                                   std::span<const double> lateral_strain) {
+  ElasticConstants e;
+  if (axial_stress.empty()) return e;
+  const auto peak_it = std::max_element(axial_stress.begin(), axial_stress.end());
+  const double peak = *peak_it;
+  const auto n_pre = static_cast<std::size_t>(peak_it - axial_stress.begin());
+  std::vector<double> ea, sa, el;
+  for (std::size_t i = 0; i < n_pre; ++i) {
+    if (axial_stress[i] >= 0.4 * peak && axial_stress[i] <= 0.6 * peak) {
+      ea.push_back(axial_strain[i]);
+      sa.push_back(axial_stress[i]);
+      el.push_back(lateral_strain[i]);
+    }
+  }
+  if (ea.size() < 3 || peak <= 0) return e;
+  e.youngs_modulus = slope(ea, sa);
+  e.poisson_ratio = -slope(ea, el);
+  e.valid = e.youngs_modulus > 0;
+  return e;
+}
+
+}  // namespace vorodec::measure

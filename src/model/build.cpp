@@ -1,0 +1,119 @@
+#include "vorodec/model/build.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "vorodec/model/polygon.hpp"
+
+namespace vorodec::model {
+
+namespace {
+
+// Arc of a corner rounded at distance d along both edges; the radius is capped so that nearly
+// straight corners (interior angle near 180 degrees) do not get centres far inside the block.
+void round_corner(Point prev, Point c, Point next, double d, Point& centre, double& radius) {
+  Point u = prev - c, w = next - c;
+  u = (1.0 / std::sqrt(dot(u, u))) * u;
+  w = (1.0 / std::sqrt(dot(w, w))) * w;
+  const double half = 0.5 * std::acos(std::clamp(dot(u, w), -1.0, 1.0));  // beta / 2
+  radius = std::min(d * std::tan(half), 4.0 * d);
+  Point bis = u + w;
+  const double bl = std::sqrt(dot(bis, bis));
+  bis = bl > 0 ? (1.0 / bl) * bis : Point{-u.y, u.x};
+  centre = c + (radius / std::sin(half)) * bis;
+}
+
+}  // namespace
+
+void add_block(Model& model, std::span<const Point> polygon, double density, Group group) {
+  Blocks& b = model.blocks;
+  const MassProperties mp = mass_properties(polygon);
+  b.x.push_back(mp.centroid.x);
+  b.y.push_back(mp.centroid.y);
+  b.theta.push_back(0.0);
+  b.x0.push_back(mp.centroid.x);
+  b.y0.push_back(mp.centroid.y);
+  for (auto* v : {&b.vx, &b.vy, &b.omega, &b.fx, &b.fy, &b.moment}) v->push_back(0.0);
+  const double m = density * mp.area * model.thickness;
+  b.mass.push_back(m);
+  b.gravity_mass.push_back(m);
+  b.inertia.push_back(density * mp.polar_moment * model.thickness);
+  b.true_inertia.push_back(b.inertia.back());
+  b.group.push_back(group);
+  b.prescribed.push_back(group == Group::specimen ? 0 : 1);
+  b.cos_t.push_back(1.0);
+  b.sin_t.push_back(0.0);
+  if (b.corner_begin.empty()) b.corner_begin.push_back(0);
+  const std::size_t n = polygon.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Point centre;
+    double radius = 0;
+    round_corner(polygon[(i + n - 1) % n], polygon[i], polygon[(i + 1) % n], model.rounding_length,
+                 centre, radius);
+    b.corner.push_back(polygon[i] - mp.centroid);
+    b.round_centre.push_back(centre - mp.centroid);
+    b.round_radius.push_back(radius);
+  }
+  b.corner_begin.push_back(static_cast<std::uint32_t>(b.corner.size()));
+  const std::uint32_t first = b.corner_begin[b.corner_begin.size() - 2];
+  for (std::uint32_t i = first; i < b.corner.size(); ++i) {
+    const std::uint32_t j = i + 1 == b.corner.size() ? first : i + 1;
+    b.corner_next.push_back(j);
+    const Point e = b.corner[j] - b.corner[i];
+    const double inv = 1.0 / std::sqrt(dot(e, e));
+    b.edge_inv_length.push_back(inv);
+    b.edge_s0.push_back(dot(b.round_centre[i] - b.corner[i], inv * e));
+    b.edge_s1.push_back(dot(b.round_centre[j] - b.corner[i], inv * e));
+  }
+  b.world_corner.resize(b.corner.size());
+  b.world_centre.resize(b.corner.size());
+}
+
+void Blocks::refresh_world() {
+  const auto n = static_cast<std::int64_t>(size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t bi = 0; bi < n; ++bi) {
+    const auto b = static_cast<std::size_t>(bi);
+    const double c = std::cos(theta[b]), s = std::sin(theta[b]);
+    cos_t[b] = c;
+    sin_t[b] = s;
+    for (std::uint32_t k = corner_begin[b]; k < corner_begin[b + 1]; ++k) {
+      world_corner[k] = {x[b] + c * corner[k].x - s * corner[k].y,
+                         y[b] + s * corner[k].x + c * corner[k].y};
+      world_centre[k] = {x[b] + c * round_centre[k].x - s * round_centre[k].y,
+                         y[b] + s * round_centre[k].x + c * round_centre[k].y};
+    }
+  }
+}
+
+Model build_model(const geometry::Tessellation& tess, const BuildSettings& settings) {
+  Model model;
+  model.rounding_length = settings.rounding_length;
+  std::vector<Point> poly;
+  double xmin = std::numeric_limits<double>::max(), xmax = -xmin, ymin = xmin, ymax = -xmin;
+  for (const auto& blk : tess.blocks) {
+    poly.clear();
+    for (std::uint32_t v : blk) {
+      poly.push_back(tess.vertices[v]);
+      xmin = std::min(xmin, poly.back().x);
+      xmax = std::max(xmax, poly.back().x);
+      ymin = std::min(ymin, poly.back().y);
+      ymax = std::max(ymax, poly.back().y);
+    }
+    add_block(model, poly, settings.density, Group::specimen);
+  }
+  if (settings.platens) {
+    // Platens overhang the specimen by half its width; their mass never enters (velocity prescribed).
+    const double w = xmax - xmin, t = 0.25 * w;
+    const Point bottom[] = {{xmin - 0.5 * w, ymin - t}, {xmax + 0.5 * w, ymin - t},
+                            {xmax + 0.5 * w, ymin}, {xmin - 0.5 * w, ymin}};
+    const Point top[] = {{xmin - 0.5 * w, ymax}, {xmax + 0.5 * w, ymax},
+                         {xmax + 0.5 * w, ymax + t}, {xmin - 0.5 * w, ymax + t}};
+    add_block(model, bottom, settings.density, Group::bottom_platen);
+    add_block(model, top, settings.density, Group::top_platen);
+  }
+  return model;
+}
+
+}  // namespace vorodec::model

@@ -1,0 +1,322 @@
+#include "vorodec/solver/contact_detection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "vorodec/model/contact_geometry.hpp"
+
+namespace vorodec::solver {
+
+using model::Blocks;
+using model::Contact;
+using model::ContactFrame;
+using model::Point;
+
+namespace {
+
+struct Box {
+  double x0, y0, x1, y1;
+};
+
+Box world_box(const Blocks& bl, std::uint32_t b, double margin) {
+  Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+          -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+  for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
+    const Point p = bl.to_world(b, bl.corner[c]);
+    box = {std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x),
+           std::max(box.y1, p.y)};
+  }
+  return {box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin};
+}
+
+// Nearest feature of block b to corner `corner` of block a; the frame's edge is returned in `edge`.
+ContactFrame nearest_feature(const Blocks& bl, std::uint32_t a, std::uint32_t corner,
+                             std::uint32_t b, std::uint32_t& edge) {
+  const Point cA = bl.to_world(a, bl.round_centre[corner]);
+  const double rA = bl.round_radius[corner];
+  ContactFrame best{};
+  best.gap = std::numeric_limits<double>::max();
+  double deepest = -std::numeric_limits<double>::max();
+  std::uint32_t deepest_edge = bl.corner_begin[b];
+  bool outside = false;
+  for (std::uint32_t e0 = bl.corner_begin[b]; e0 < bl.corner_begin[b + 1]; ++e0) {
+    const std::uint32_t e1 = bl.next_corner(b, e0);
+    const Point v0 = bl.to_world(b, bl.corner[e0]), v1 = bl.to_world(b, bl.corner[e1]);
+    const Point t = v1 - v0;
+    const double h = cross(t, cA - v0) / -std::sqrt(dot(t, t));  // distance outside the edge line
+    if (h > deepest) {
+      deepest = h;
+      deepest_edge = e0;
+    }
+    if (h <= 0) continue;
+    outside = true;
+    const ContactFrame f =
+        model::corner_edge_frame(cA, rA, v0, v1, bl.to_world(b, bl.round_centre[e0]),
+                                 bl.round_radius[e0], bl.to_world(b, bl.round_centre[e1]),
+                                 bl.round_radius[e1]);
+    if (f.gap < best.gap) {
+      best = f;
+      edge = e0;
+    }
+  }
+  if (!outside) {  // the corner's centre is inside b's polygon: take the least penetrated edge
+    const std::uint32_t e0 = deepest_edge, e1 = bl.next_corner(b, e0);
+    edge = e0;
+    best = model::corner_edge_frame(
+        cA, rA, bl.to_world(b, bl.corner[e0]), bl.to_world(b, bl.corner[e1]),
+        bl.to_world(b, bl.round_centre[e0]), bl.round_radius[e0],
+        bl.to_world(b, bl.round_centre[e1]), bl.round_radius[e1]);
+  }
+  return best;
+}
+
+struct Candidate {
+  Contact contact;
+  Point point;
+};
+
+bool key_less(const Contact& x, const Contact& y) {
+  if (x.law != y.law) return x.law < y.law;
+  if (x.a != y.a) return x.a < y.a;
+  if (x.corner != y.corner) return x.corner < y.corner;
+  return x.b < y.b;
+}
+
+// Lengths of new contacts from the spacing of all contacts between the same two blocks: each
+// contact represents the joint up to halfway to its neighbours, plus the rounding length at the ends.
+void assign_lengths(std::vector<Candidate>& pair_contacts, double d) {
+  const std::size_t k = pair_contacts.size();
+  if (k == 1) {
+    pair_contacts[0].contact.length = 2.0 * d;
+    return;
+  }
+  const Point p0 = pair_contacts.front().point;
+  Point dir{0, 0};
+  for (const auto& c : pair_contacts) {
+    const Point r = c.point - p0;
+    dir = dot(r, dir) < 0 ? dir - r : dir + r;
+  }
+  const double dl = std::sqrt(dot(dir, dir));
+  dir = dl > 0 ? (1.0 / dl) * dir : Point{1, 0};
+  std::vector<std::pair<double, std::size_t>> s(k);
+  for (std::size_t i = 0; i < k; ++i) s[i] = {dot(pair_contacts[i].point - p0, dir), i};
+  std::sort(s.begin(), s.end());
+  for (std::size_t j = 0; j < k; ++j) {
+    const double lo = j == 0 ? s[j].first - d : 0.5 * (s[j - 1].first + s[j].first);
+    const double hi = j + 1 == k ? s[j].first + d : 0.5 * (s[j].first + s[j + 1].first);
+    Contact& c = pair_contacts[s[j].second].contact;
+    if (c.length == 0.0) c.length = std::max(hi - lo, 2.0 * d);
+  }
+}
+
+}  // namespace
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const Blocks& bl, double margin) {
+  const auto n = static_cast<std::uint32_t>(bl.size());
+  std::vector<Box> boxes(n);
+  double size = 0;
+  std::size_t counted = 0;
+  Box all{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+          -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+  for (std::uint32_t b = 0; b < n; ++b) {
+    boxes[b] = world_box(bl, b, margin);
+    all = {std::min(all.x0, boxes[b].x0), std::min(all.y0, boxes[b].y0),
+           std::max(all.x1, boxes[b].x1), std::max(all.y1, boxes[b].y1)};
+    if (bl.group[b] == model::Group::specimen) {
+      size += std::max(boxes[b].x1 - boxes[b].x0, boxes[b].y1 - boxes[b].y0);
+      ++counted;
+    }
+  }
+  // Cells about two mean block sizes wide: a block overlaps at most a few cells.
+  const double h = counted ? 2.0 * size / static_cast<double>(counted) : (all.x1 - all.x0);
+  const auto nx = static_cast<std::int64_t>(std::ceil((all.x1 - all.x0) / h)) + 1;
+  const auto ny = static_cast<std::int64_t>(std::ceil((all.y1 - all.y0) / h)) + 1;
+  const auto cell_of = [&](double x, double y) {
+    const auto i = std::clamp<std::int64_t>(static_cast<std::int64_t>((x - all.x0) / h), 0, nx - 1);
+    const auto j = std::clamp<std::int64_t>(static_cast<std::int64_t>((y - all.y0) / h), 0, ny - 1);
+    return std::pair{i, j};
+  };
+  std::vector<std::pair<std::int64_t, std::uint32_t>> entries;
+  for (std::uint32_t b = 0; b < n; ++b) {
+    const auto [i0, j0] = cell_of(boxes[b].x0, boxes[b].y0);
+    const auto [i1, j1] = cell_of(boxes[b].x1, boxes[b].y1);
+    for (auto j = j0; j <= j1; ++j)
+      for (auto i = i0; i <= i1; ++i) entries.push_back({j * nx + i, b});
+  }
+  std::sort(entries.begin(), entries.end());
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (std::size_t lo = 0; lo < entries.size();) {
+    std::size_t hi = lo;
+    while (hi < entries.size() && entries[hi].first == entries[lo].first) ++hi;
+    for (std::size_t p = lo; p < hi; ++p) {
+      for (std::size_t q = p + 1; q < hi; ++q) {
+        const std::uint32_t a = entries[p].second, b = entries[q].second;
+        const Box &A = boxes[a], &B = boxes[b];
+        if (A.x1 < B.x0 || B.x1 < A.x0 || A.y1 < B.y0 || B.y1 < A.y0) continue;
+        // Report each pair once: in the cell holding the lower-left corner of the overlap.
+        const auto [ci, cj] = cell_of(std::max(A.x0, B.x0), std::max(A.y0, B.y0));
+        if (cj * nx + ci != entries[lo].first) continue;
+        pairs.push_back({std::min(a, b), std::max(a, b)});
+      }
+    }
+    lo = hi;
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+DetectionStats ContactDetector::detect(model::Model& model,
+                                       std::vector<std::unique_ptr<laws::LawGroup>>& laws,
+                                       bool bond_new) {
+  Blocks& bl = model.blocks;
+  const double d = model.rounding_length;
+  bl.refresh_world();
+  // Existing contacts, indexed by key for lookup; their position in the old array is remembered.
+  std::vector<std::size_t> old_order(model.contacts.size());
+  for (std::size_t i = 0; i < old_order.size(); ++i) old_order[i] = i;
+  const auto pair_less = [&](std::size_t i, std::size_t j) {
+    const Contact &x = model.contacts[i], &y = model.contacts[j];
+    if (std::min(x.a, x.b) != std::min(y.a, y.b)) return std::min(x.a, x.b) < std::min(y.a, y.b);
+    if (std::max(x.a, x.b) != std::max(y.a, y.b)) return std::max(x.a, x.b) < std::max(y.a, y.b);
+    return key_less(x, y);
+  };
+  std::sort(old_order.begin(), old_order.end(), pair_less);
+
+  DetectionStats stats;
+  std::vector<Candidate> result;           // contacts of the new list, with their points
+  std::vector<std::int64_t> origin;        // old index, or -1
+  std::vector<Candidate> pair_list, fresh;
+  std::vector<std::int64_t> pair_origin;
+  std::size_t old_pos = 0;
+  const auto pairs = broad_phase(bl, tolerance_ + 2.0 * d);
+  const auto flush_old_until = [&](std::uint32_t lo, std::uint32_t hi, bool inclusive) {
+    // Old contacts of pairs that the broad phase no longer reports: keep only intact bonded ones.
+    while (old_pos < old_order.size()) {
+      const Contact& c = model.contacts[old_order[old_pos]];
+      const auto plo = static_cast<std::uint32_t>(std::min(c.a, c.b));
+      const auto phi = static_cast<std::uint32_t>(std::max(c.a, c.b));
+      if (plo > lo || (plo == lo && (inclusive ? phi > hi : phi >= hi))) break;
+      if (c.bonded && c.state <= model::ContactState::slipping) {
+        result.push_back({c, {}});
+        origin.push_back(static_cast<std::int64_t>(old_order[old_pos]));
+        ++stats.kept;
+      } else {
+        ++stats.deleted;
+      }
+      ++old_pos;
+    }
+  };
+  for (const auto& [pa, pb] : pairs) {
+    const int law = table_.for_pair(bl.group[pa], bl.group[pb]);
+    if (law < 0) continue;
+    flush_old_until(pa, pb, false);
+    // Old contacts of this pair.
+    pair_list.clear();
+    pair_origin.clear();
+    while (old_pos < old_order.size()) {
+      const Contact& c = model.contacts[old_order[old_pos]];
+      if (static_cast<std::uint32_t>(std::min(c.a, c.b)) != pa ||
+          static_cast<std::uint32_t>(std::max(c.a, c.b)) != pb)
+        break;
+      pair_list.push_back({c, {}});
+      pair_origin.push_back(static_cast<std::int64_t>(old_order[old_pos]));
+      ++old_pos;
+    }
+    // Narrow phase: every corner of each block against the other block.
+    fresh.clear();
+    for (const auto& [a, b] : {std::pair{pa, pb}, std::pair{pb, pa}}) {
+      for (std::uint32_t k = bl.corner_begin[a]; k < bl.corner_begin[a + 1]; ++k) {
+        std::uint32_t edge = 0;
+        const ContactFrame f = nearest_feature(bl, a, k, b, edge);
+        bool existing = false;
+        for (std::size_t i = 0; i < pair_list.size(); ++i) {
+          Contact& c = pair_list[i].contact;
+          if (c.a == static_cast<std::int32_t>(a) && c.corner == k) {
+            existing = true;
+            c.edge = edge;
+            pair_list[i].point = f.point;
+          }
+        }
+        if (existing || f.gap > tolerance_) continue;
+        Contact c;
+        c.a = static_cast<std::int32_t>(a);
+        c.b = static_cast<std::int32_t>(b);
+        c.corner = k;
+        c.edge = edge;
+        c.gap = f.gap;
+        c.law = static_cast<std::uint16_t>(law);
+        // Bonds join blocks that share an edge (gap zero up to round-off); blocks that only
+        // approach each other at a vertex get an unbonded, frictional contact.
+        c.bonded = bond_new && bl.group[a] == model::Group::specimen &&
+                   bl.group[b] == model::Group::specimen && std::abs(f.gap) <= 1e-3 * d;
+        fresh.push_back({c, f.point});
+      }
+    }
+    // Keep old contacts that are still close (or bonded and intact); drop the rest.
+    std::vector<Candidate> kept;
+    std::vector<std::int64_t> kept_origin;
+    for (std::size_t i = 0; i < pair_list.size(); ++i) {
+      const Contact& c = pair_list[i].contact;
+      if (c.gap <= tolerance_ || (c.bonded && c.state <= model::ContactState::slipping)) {
+        kept.push_back(pair_list[i]);
+        kept_origin.push_back(pair_origin[i]);
+        ++stats.kept;
+      } else {
+        ++stats.deleted;
+      }
+    }
+    // A corner of a and a corner of b meeting at one point give one contact: the lower block's
+    // (fresh is in block order, so the lower block's candidates come first).
+    const std::size_t n_kept = kept.size();
+    for (const Candidate& cand : fresh) {
+      bool duplicate = false;
+      for (const Candidate& k : kept) {
+        const Point r = k.point - cand.point;
+        if (dot(r, r) < d * d) duplicate = true;
+      }
+      if (duplicate) continue;
+      kept.push_back(cand);
+      kept_origin.push_back(-1);
+    }
+    if (kept.size() > n_kept) assign_lengths(kept, d);
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      if (kept_origin[i] < 0) {
+        kept[i].contact.id = next_id_++;
+        ++stats.created;
+      }
+      result.push_back(kept[i]);
+      origin.push_back(kept_origin[i]);
+    }
+  }
+  flush_old_until(std::numeric_limits<std::uint32_t>::max(), 0, true);
+
+  // Sort by law then corner owner (memory order of the step loop).
+  std::vector<std::size_t> order(result.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    return key_less(result[i].contact, result[j].contact);
+  });
+  std::vector<Contact> contacts(result.size());
+  for (std::size_t i = 0; i < order.size(); ++i) contacts[i] = result[order[i]].contact;
+
+  // Each law rebuilds its arrays from old local indices.
+  std::vector<std::size_t> old_begin(laws.size() + 1, 0);
+  for (const Contact& c : model.contacts) ++old_begin[c.law + 1u];
+  for (std::size_t l = 0; l < laws.size(); ++l) old_begin[l + 1] += old_begin[l];
+  std::size_t pos = 0;
+  for (std::size_t l = 0; l < laws.size(); ++l) {
+    std::vector<std::int64_t> old_local;
+    std::vector<laws::NewContact> fresh_info;
+    for (; pos < order.size() && contacts[pos].law == l; ++pos) {
+      const std::int64_t o = origin[order[pos]];
+      old_local.push_back(o < 0 ? -1 : o - static_cast<std::int64_t>(old_begin[l]));
+      fresh_info.push_back({contacts[pos].id, contacts[pos].length, contacts[pos].bonded != 0});
+    }
+    laws[l]->rebuild(old_local, fresh_info);
+  }
+  model.contacts.swap(contacts);
+  return stats;
+}
+
+}  // namespace vorodec::solver

@@ -1,0 +1,244 @@
+#include "vorodec/solver/solver.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "vorodec/model/contact_geometry.hpp"
+
+namespace vorodec::solver {
+
+using model::Point;
+
+namespace {
+constexpr std::uint32_t b_side = 0x80000000u;
+double sign(double v) { return (v > 0.0) - (v < 0.0); }
+}  // namespace
+
+Solver::Solver(model::Model& model, std::vector<std::unique_ptr<laws::LawGroup>> laws,
+               LawTable table, SolverSettings settings)
+    : model_(model),
+      laws_(std::move(laws)),
+      detector_(settings.contact_tolerance, table),
+      settings_(settings) {
+  cracks_per_thread_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+}
+
+void Solver::initialise() {
+  detect(true);
+  initial_bonded_ = static_cast<std::size_t>(
+      std::count_if(model_.contacts.begin(), model_.contacts.end(),
+                    [](const model::Contact& c) { return c.bonded != 0; }));
+}
+
+void Solver::detect(bool bond_new) {
+  detector_.detect(model_, laws_, bond_new);
+  ++detections_;
+  const auto& bl = model_.blocks;
+  const std::size_t nb = bl.size(), nc = model_.contacts.size();
+  law_begin_.assign(laws_.size() + 1, 0);
+  for (const auto& c : model_.contacts) ++law_begin_[c.law + 1u];
+  for (std::size_t l = 0; l < laws_.size(); ++l) law_begin_[l + 1] += law_begin_[l];
+  forces_.resize(nc);
+  cfx_.resize(nb, 0.0);
+  cfy_.resize(nb, 0.0);
+  cm_.resize(nb, 0.0);
+  gather_begin_.assign(nb + 1, 0);
+  for (const auto& c : model_.contacts) {
+    ++gather_begin_[static_cast<std::size_t>(c.a) + 1];
+    ++gather_begin_[static_cast<std::size_t>(c.b) + 1];
+  }
+  for (std::size_t b = 0; b < nb; ++b) gather_begin_[b + 1] += gather_begin_[b];
+  gather_.resize(2 * nc);
+  std::vector<std::uint32_t> fill(gather_begin_.begin(), gather_begin_.end() - 1);
+  for (std::uint32_t i = 0; i < nc; ++i) {
+    gather_[fill[static_cast<std::size_t>(model_.contacts[i].a)]++] = i;
+    gather_[fill[static_cast<std::size_t>(model_.contacts[i].b)]++] = i | b_side;
+  }
+  x_detect_ = bl.x;
+  y_detect_ = bl.y;
+  t_detect_ = bl.theta;
+  last_detection_ = steps_;
+  compute_time_step();
+}
+
+void Solver::compute_time_step() {
+  auto& bl = model_.blocks;
+  const std::size_t nb = bl.size();
+  std::vector<double> kt(nb, 0.0), kr(nb, 0.0);
+  for (std::size_t l = 0; l < laws_.size(); ++l) {
+    for (std::size_t i = law_begin_[l]; i < law_begin_[l + 1]; ++i) {
+      model::Contact c = model_.contacts[i];
+      const Point p = model::contact_frame(bl, c).point;
+      const double k = laws_[l]->max_stiffness(i - law_begin_[l]);
+      for (const auto blk : {static_cast<std::size_t>(c.a), static_cast<std::size_t>(c.b)}) {
+        const double rx = p.x - bl.x[blk], ry = p.y - bl.y[blk];
+        kt[blk] += k;
+        kr[blk] += k * (rx * rx + ry * ry);
+      }
+    }
+  }
+  const double s = settings_.safety_factor;
+  const double target = settings_.time_step;
+  double dt = std::numeric_limits<double>::max();
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (bl.prescribed[b] || kt[b] == 0.0) continue;
+    if (target > 0.0) {  // density scaling: the smallest inertia that makes `target` stable
+      bl.mass[b] = std::max(bl.gravity_mass[b], kt[b] * target * target / (s * s));
+      bl.inertia[b] = std::max(bl.true_inertia[b], kr[b] * target * target / (s * s));
+    }
+    dt = std::min({dt, std::sqrt(bl.mass[b] / kt[b]), std::sqrt(bl.inertia[b] / kr[b])});
+  }
+  dt_ = target > 0.0 ? target : s * dt;
+  if (dt_ == std::numeric_limits<double>::max()) dt_ = 1e-6;  // no contacts: free flight
+}
+
+void Solver::step() {
+  auto& bl = model_.blocks;
+  const auto nb = static_cast<std::int64_t>(bl.size());
+  bl.refresh_world();
+  if (steps_ % 10 == 0) {
+    // Redetect once a block has moved half the tolerance since the last detection.
+    double moved = 0.0;
+    for (std::int64_t b = 0; b < nb; ++b) {
+      const auto i = static_cast<std::size_t>(b);
+      const double r = std::sqrt(bl.corner[bl.corner_begin[i]].x * bl.corner[bl.corner_begin[i]].x +
+                                 bl.corner[bl.corner_begin[i]].y * bl.corner[bl.corner_begin[i]].y);
+      moved = std::max(moved, std::abs(bl.x[i] - x_detect_[i]) + std::abs(bl.y[i] - y_detect_[i]) +
+                                  2.0 * r * std::abs(bl.theta[i] - t_detect_[i]));
+    }
+    if (moved > 0.5 * detector_.tolerance() ||
+        steps_ - last_detection_ >= settings_.max_detection_interval)
+      detect(false);
+  }
+  laws::StepContext ctx{&bl, model_.contacts.data(), forces_.data(), &cracks_per_thread_, dt_,
+                        time_, {}};
+  for (std::size_t l = 0; l < laws_.size(); ++l) laws_[l]->step(ctx, law_begin_[l], law_begin_[l + 1]);
+  energy_.slip += ctx.totals.dissipated_slip;
+  energy_.breakage += ctx.totals.dissipated_breakage;
+  for (auto& list : cracks_per_thread_) {  // thread order = contact order: deterministic
+    cracks_.insert(cracks_.end(), list.begin(), list.end());
+    list.clear();
+  }
+  gather_forces();
+  integrate();
+  time_ += dt_;
+  ++steps_;
+}
+
+void Solver::gather_forces() {
+  const auto& bl = model_.blocks;
+  const auto nb = static_cast<std::int64_t>(bl.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t bi = 0; bi < nb; ++bi) {
+    const auto b = static_cast<std::size_t>(bi);
+    double fx = 0, fy = 0, m = 0;
+    for (std::uint32_t k = gather_begin_[b]; k < gather_begin_[b + 1]; ++k) {
+      const std::uint32_t e = gather_[k];
+      const model::ContactForce& f = forces_[e & ~b_side];
+      const double s = (e & b_side) ? -1.0 : 1.0;
+      fx += s * f.fx;
+      fy += s * f.fy;
+      m += s * ((f.px - bl.x[b]) * f.fy - (f.py - bl.y[b]) * f.fx);
+    }
+    cfx_[b] = fx;
+    cfy_[b] = fy;
+    cm_[b] = m;
+  }
+}
+
+void Solver::integrate() {
+  auto& bl = model_.blocks;
+  const auto nb = static_cast<std::int64_t>(bl.size());
+  const double alpha = settings_.local_damping, dt = dt_;
+  const Point g = settings_.gravity;
+  double w_boundary = 0, w_body = 0, w_damp = 0;
+#pragma omp parallel for schedule(static) reduction(+ : w_boundary, w_body, w_damp)
+  for (std::int64_t bi = 0; bi < nb; ++bi) {
+    const auto b = static_cast<std::size_t>(bi);
+    if (bl.prescribed[b]) {
+      // Work of the platen on the specimen: minus the contact force the specimen exerts on it.
+      w_boundary -= (cfx_[b] * bl.vx[b] + cfy_[b] * bl.vy[b] + cm_[b] * bl.omega[b]) * dt;
+      bl.x[b] += bl.vx[b] * dt;
+      bl.y[b] += bl.vy[b] * dt;
+      bl.theta[b] += bl.omega[b] * dt;
+      continue;
+    }
+    const double fx = cfx_[b] + bl.fx[b] + bl.gravity_mass[b] * g.x;
+    const double fy = cfy_[b] + bl.fy[b] + bl.gravity_mass[b] * g.y;
+    const double mz = cm_[b] + bl.moment[b];
+    const double dfx = -alpha * std::abs(fx) * sign(bl.vx[b]);
+    const double dfy = -alpha * std::abs(fy) * sign(bl.vy[b]);
+    const double dmz = -alpha * std::abs(mz) * sign(bl.omega[b]);
+    bl.vx[b] += (fx + dfx) / bl.mass[b] * dt;
+    bl.vy[b] += (fy + dfy) / bl.mass[b] * dt;
+    bl.omega[b] += (mz + dmz) / bl.inertia[b] * dt;
+    w_damp -= (dfx * bl.vx[b] + dfy * bl.vy[b] + dmz * bl.omega[b]) * dt;
+    w_boundary += (bl.fx[b] * bl.vx[b] + bl.fy[b] * bl.vy[b] + bl.moment[b] * bl.omega[b]) * dt;
+    w_body += bl.gravity_mass[b] * (g.x * bl.vx[b] + g.y * bl.vy[b]) * dt;
+    bl.x[b] += bl.vx[b] * dt;
+    bl.y[b] += bl.vy[b] * dt;
+    bl.theta[b] += bl.omega[b] * dt;
+  }
+  energy_.boundary_work += w_boundary;
+  energy_.body_work += w_body;
+  energy_.damping += w_damp;
+}
+
+double Solver::kinetic_energy() const {
+  const auto& bl = model_.blocks;
+  double e = 0.0;
+  for (std::size_t b = 0; b < bl.size(); ++b)
+    if (!bl.prescribed[b])
+      e += 0.5 * (bl.mass[b] * (bl.vx[b] * bl.vx[b] + bl.vy[b] * bl.vy[b]) +
+                  bl.inertia[b] * bl.omega[b] * bl.omega[b]);
+  return e;
+}
+
+double Solver::contact_strain_energy() const {
+  double e = 0.0;
+  for (std::size_t l = 0; l < laws_.size(); ++l)
+    for (std::size_t i = law_begin_[l]; i < law_begin_[l + 1]; ++i)
+      e += laws_[l]->strain_energy(i - law_begin_[l], model_.contacts[i].fn, model_.contacts[i].fs);
+  return e;
+}
+
+double Solver::contact_stiffness_on(std::size_t b) const {
+  double k = 0.0;
+  for (std::uint32_t g = gather_begin_[b]; g < gather_begin_[b + 1]; ++g) {
+    const std::size_t i = gather_[g] & ~b_side;
+    const std::size_t l = model_.contacts[i].law;
+    k += laws_[l]->max_stiffness(i - law_begin_[l]);
+  }
+  return k;
+}
+
+void Solver::check_stability() const {
+  const auto& bl = model_.blocks;
+  for (std::size_t b = 0; b < bl.size(); ++b) {
+    if (!std::isfinite(bl.x[b] + bl.y[b] + bl.theta[b] + bl.vx[b] + bl.vy[b] + bl.omega[b]))
+      throw InstabilityError(fmt::format(
+          "block {} has a non-finite position or velocity at step {} (t = {:.6g} s)", b, steps_,
+          time_));
+  }
+  const double limit = 0.5 * model_.rounding_length;
+  for (const auto& c : model_.contacts) {
+    if (c.gap < -limit)
+      throw InstabilityError(fmt::format(
+          "contact overlap too great between blocks {} and {}: {:.3g} m > d/2 = {:.3g} m at step {}"
+          " (t = {:.6g} s); loading too fast, time step too large or stiffness too low",
+          c.a, c.b, -c.gap, limit, steps_, time_));
+  }
+  const double supplied = energy_.boundary_work + energy_.body_work;
+  const double ke = kinetic_energy();
+  if (steps_ > 100 && ke > 1.5 * std::abs(supplied) + 1e-9)
+    throw InstabilityError(fmt::format(
+        "kinetic energy {:.4g} J/m exceeds the work supplied {:.4g} J/m at step {} (t = {:.6g} s):"
+        " the explicit integration is unstable; lower solver.safety_factor",
+        ke, supplied, steps_, time_));
+}
+
+}  // namespace vorodec::solver
