@@ -23,6 +23,7 @@ constexpr double kWidth = 0.05;
 constexpr double kHeight = 0.1;
 constexpr double kDiameter = 0.05;
 constexpr int kDiscSegments = 96;
+constexpr double kNearlyConvex = 0.5 * std::numbers::pi / 180;  // largest reflex turn after collapse
 
 TessellationSettings rectangle(int blocks, std::uint64_t seed = 1) {
   TessellationSettings s;
@@ -226,7 +227,7 @@ TEST(Tessellation, ShortEdgesAreCollapsedAndTopologyStaysWatertight) {
   EXPECT_NEAR(total_area(t) / (kWidth * kHeight), 1.0, 1e-9);
   for (const Block& block : t.blocks) {
     EXPECT_GE(block.size(), 3U);
-    EXPECT_LE(worst_reflex_turn(t.vertices, block), 20 * std::numbers::pi / 180);
+    EXPECT_LE(worst_reflex_turn(t.vertices, block), kNearlyConvex);
   }
 }
 
@@ -238,6 +239,19 @@ TEST(Tessellation, ShortEdgesOnDiscAreCollapsedOntoTheOutline) {
   EXPECT_GT(t.report.edges_collapsed, 0U);
   EXPECT_GE(t.report.edge_min, s.min_edge_length);
   EXPECT_NEAR(total_area(t) / t.report.outline_area, 1.0, 1e-9);
+  for (const Block& block : t.blocks) {
+    EXPECT_LE(worst_reflex_turn(t.vertices, block), kNearlyConvex);
+  }
+}
+
+TEST(Tessellation, CollapseKeepsEveryBlockForModerateMinEdgeLength) {
+  for (const std::uint64_t seed : {1, 2, 3, 4, 5, 6}) {
+    TessellationSettings s = rectangle(1300, seed);
+    s.min_edge_length = 0.3e-3;  // about a fifth of the mean edge
+    const Tessellation t = tessellate(s);
+    EXPECT_EQ(t.blocks.size(), 1300U);
+    EXPECT_GE(t.report.edge_min, s.min_edge_length);
+  }
 }
 
 TEST(Tessellation, MinEdgeLengthTooLargeForBlocksThrows) {

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <filesystem>
 
 #include "vorodec/app/simulation.hpp"
@@ -47,6 +48,8 @@ void print_report(const geometry::Tessellation& t, const io::ModelConfig& cfg) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Spin briefly, then sleep: on a shared 2-core machine long spinning stalls every barrier.
+  setenv("GOMP_SPINCOUNT", "20000", 0);
   CLI::App cli{"vorodec: 2D Voronoi distinct element code for rock mechanics"};
   cli.set_version_flag("--version", std::string("vorodec ") + VORODEC_VERSION);
   cli.require_subcommand(1);

@@ -48,7 +48,7 @@ struct Setup {
 
 Setup make_setup(const io::ModelConfig& cfg, const geometry::Tessellation& tess) {
   Setup s;
-  const double d = cfg.rounding_length > 0 ? cfg.rounding_length : 0.01 * mean_edge(tess);
+  const double d = cfg.rounding_length > 0 ? cfg.rounding_length : 0.05 * mean_edge(tess);
   s.model = std::make_unique<model::Model>(model::build_model(tess, {cfg.density, d, true}));
   std::vector<std::unique_ptr<laws::LawGroup>> groups;
   for (const io::LawChoice* choice : {&cfg.joints, &cfg.platens})

@@ -44,6 +44,7 @@ constexpr int kCountPasses = 5;
 constexpr std::size_t kMaxBlocks = 50'000'000;  // keeps vertex indices within 32 bits
 constexpr int kMaxCollapsePasses = 10'000;
 constexpr int kThinCellSweeps = 10;
+constexpr int kStraightenSweeps = 5;
 
 void require(bool condition, const std::string& message) {
   if (!condition) throw GeometryError(message);
@@ -303,7 +304,7 @@ class HalfPlaneClipper {
 
 using Neighbours = std::vector<std::vector<std::uint32_t>>;
 
-// Every seed is its own neighbour-candidate set when the triangulation is not two-dimensional.
+// Without a two-dimensional triangulation (collinear seeds) every other seed is a neighbour.
 Neighbours all_pairs(std::size_t count) {
   Neighbours neighbours(count);
   for (std::uint32_t i = 0; i < count; ++i) {
@@ -386,7 +387,6 @@ struct Candidate {
   std::vector<Point> vertices;
   Blocks blocks;
   CollapseSummary collapse;
-  double mean_edge = 0;
 };
 
 // Union-find whose root is the smallest member: a cluster's first appearance.
@@ -480,6 +480,7 @@ class EdgeCollapser {
       if (collapsed == 0) break;
       summary.edges += collapsed;
     }
+    if (summary.edges > 0) straighten_reflex_vertices();
     summary.max_shift = max_shift();
     return summary;
   }
@@ -595,6 +596,98 @@ class EdgeCollapser {
     return worst;
   }
 
+  // Collapses next to fixed outline corners can leave reflex corners: move those vertices (or
+  // their neighbours) towards the centroid of their neighbours while that helps and keeps edges
+  // long enough.
+  void straighten_reflex_vertices() {
+    index_blocks_of_vertices();
+    for (int sweep = 0; sweep < kStraightenSweeps; ++sweep) {
+      bool moved = false;
+      for (const std::uint32_t v : reflex_vertices()) moved = straighten(v) || moved;
+      if (!moved) break;
+    }
+  }
+
+  // Vertices at reflex corners and their neighbours along the block.
+  std::vector<std::uint32_t> reflex_vertices() const {
+    std::vector<std::uint32_t> reflex;
+    for (const Block& block : blocks_) {
+      const std::size_t n = block.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const Point in = vertices_[block[i]] - vertices_[block[(i + n - 1) % n]];
+        const Point out = vertices_[block[(i + 1) % n]] - vertices_[block[i]];
+        if (cross(in, out) >= 0) continue;
+        // The neighbours may be freer to move than the reflex vertex itself.
+        reflex.insert(reflex.end(), {block[i], block[(i + n - 1) % n], block[(i + 1) % n]});
+      }
+    }
+    std::sort(reflex.begin(), reflex.end());
+    reflex.erase(std::unique(reflex.begin(), reflex.end()), reflex.end());
+    return reflex;
+  }
+
+  // Smallest move towards the neighbour centroid or a chord midpoint (prev + next) / 2 of one of
+  // its blocks that removes the reflex turn, else the best improvement.
+  bool straighten(std::uint32_t v) {
+    if (locations_[v].corner >= 0) return false;
+    double best_score = reflex_score(v, v, vertices_[v]);
+    Point best = vertices_[v];
+    for (const Point goal : straightening_goals(v)) {
+      for (const double t : {0.25, 0.5, 0.75, 1.0}) {
+        Point p = vertices_[v] + t * (goal - vertices_[v]);
+        if (locations_[v].segment >= 0) p = outline_.project(p, locations_[v].segment);
+        const double score = reflex_score(v, v, p);
+        if (score < best_score && shortest_edge_at(v, p) >= min_edge_) {
+          best_score = score;
+          best = p;
+        }
+        if (best_score <= 0) break;
+      }
+    }
+    const bool moved = best.x != vertices_[v].x || best.y != vertices_[v].y;
+    vertices_[v] = best;
+    return moved;
+  }
+
+  std::vector<Point> straightening_goals(std::uint32_t v) const {
+    std::vector<Point> goals{neighbour_centroid(v)};
+    for (std::uint32_t k = first_block_[v]; k < first_block_[v + 1]; ++k) {
+      const Block& block = blocks_[block_of_[k]];
+      const auto i = static_cast<std::size_t>(std::find(block.begin(), block.end(), v) - block.begin());
+      const Point next = vertices_[block[(i + 1) % block.size()]];
+      const Point prev = vertices_[block[(i + block.size() - 1) % block.size()]];
+      goals.push_back(0.5 * (next + prev));
+    }
+    return goals;
+  }
+
+  template <typename Visit>
+  void for_each_neighbour(std::uint32_t v, Visit&& visit) const {
+    for (std::uint32_t k = first_block_[v]; k < first_block_[v + 1]; ++k) {
+      const Block& block = blocks_[block_of_[k]];
+      const std::size_t i = static_cast<std::size_t>(std::find(block.begin(), block.end(), v) -
+                                                      block.begin());
+      visit(block[(i + 1) % block.size()]);
+      visit(block[(i + block.size() - 1) % block.size()]);
+    }
+  }
+
+  Point neighbour_centroid(std::uint32_t v) const {
+    Point sum;
+    double count = 0;
+    for_each_neighbour(v, [&](std::uint32_t w) {
+      sum = sum + vertices_[w];
+      count += 1;
+    });
+    return (1 / count) * sum;
+  }
+
+  double shortest_edge_at(std::uint32_t v, Point p) const {
+    double shortest = std::numeric_limits<double>::infinity();
+    for_each_neighbour(v, [&](std::uint32_t w) { shortest = std::min(shortest, length(p, vertices_[w])); });
+    return shortest;
+  }
+
   // Two outline vertices on adjacent segments can only meet at the corner between them.
   Target shared_corner(int s, int t, Point mid) const {
     const int n = outline_.corner_count();
@@ -667,7 +760,8 @@ std::vector<Polygon> relax_thin_cells(Polygon& seeds, const OutlinePolygon& outl
     for (std::size_t i = 0; i < cells.size(); ++i) {
       if (!is_thin(cells[i], min_edge)) continue;
       seeds[i] = polygon_centroid(cells[i]);
-      moved[i] = any = true;
+      moved[i] = 1;
+      any = true;
     }
     if (!any) break;
     cells = voronoi_cells(seeds, outline);
@@ -727,9 +821,9 @@ Candidate build_for_mean_edge(const OutlinePolygon& outline, const TessellationS
     require(n <= kMaxBlocks, "mean_edge_length is too small (too many blocks)");
     if (!samples.empty() && static_cast<double>(n) == samples.back().first) break;
     Candidate c = build_candidate(outline, s, n);
-    c.mean_edge = mean_edge_length(c);
-    samples.push_back({static_cast<double>(n), c.mean_edge});
-    const double error = std::abs(c.mean_edge / target - 1);
+    const double mean_edge = mean_edge_length(c);
+    samples.push_back({static_cast<double>(n), mean_edge});
+    const double error = std::abs(mean_edge / target - 1);
     if (error < best_error) {
       best_error = error;
       best = std::move(c);

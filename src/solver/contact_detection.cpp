@@ -71,6 +71,20 @@ ContactFrame nearest_feature(const Blocks& bl, std::uint32_t a, std::uint32_t co
   return best;
 }
 
+// Whether the contact normal n (pointing into corner k's block) meets corner k's arc: between the
+// outward normals of the corner's two edges. Otherwise the nearest part of that block is an edge,
+// and the contact belongs to the other block's corner.
+bool faces_arc(const Blocks& bl, std::uint32_t a, std::uint32_t k, Point n) {
+  const Point c = bl.world_corner[k];
+  const Point e_in = c - bl.world_corner[bl.prev_corner(a, k)];
+  const Point e_out = bl.world_corner[bl.corner_next[k]] - c;
+  const Point m{-n.x, -n.y};  // from the arc's centre towards the contact
+  const Point n_in{e_in.y, -e_in.x}, n_out{e_out.y, -e_out.x};
+  const double tol = 1e-6;
+  return cross(n_in, m) >= -tol * std::sqrt(dot(n_in, n_in)) &&
+         cross(m, n_out) >= -tol * std::sqrt(dot(n_out, n_out));
+}
+
 struct Candidate {
   Contact contact;
   Point point;
@@ -238,7 +252,7 @@ DetectionStats ContactDetector::detect(model::Model& model,
             pair_list[i].point = f.point;
           }
         }
-        if (existing || f.gap > tolerance_) continue;
+        if (existing || f.gap > tolerance_ || !faces_arc(bl, a, k, f.n)) continue;
         Contact c;
         c.a = static_cast<std::int32_t>(a);
         c.b = static_cast<std::int32_t>(b);
