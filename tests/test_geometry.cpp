@@ -23,7 +23,8 @@ constexpr double kWidth = 0.05;
 constexpr double kHeight = 0.1;
 constexpr double kDiameter = 0.05;
 constexpr int kDiscSegments = 96;
-constexpr double kNearlyConvex = 0.5 * std::numbers::pi / 180;  // largest reflex turn after collapse
+// Largest reflex turn accepted after the edge collapse ("nearly convex").
+constexpr double kNearlyConvex = 0.5 * std::numbers::pi / 180;
 
 TessellationSettings rectangle(int blocks, std::uint64_t seed = 1) {
   TessellationSettings s;
@@ -126,8 +127,8 @@ void expect_watertight(const Tessellation& t, bool is_disc) {
     ++boundary;
     const Point p = t.vertices[edge.first], q = t.vertices[edge.second];
     EXPECT_TRUE(is_disc ? on_disc_outline(p, q, tolerance) : on_rectangle_side(p, q, tolerance))
-        << "unmatched edge not on the outline: (" << p.x << "," << p.y << ")-(" << q.x << ","
-        << q.y << ")";
+        << "unmatched edge not on the outline: (" << p.x << "," << p.y << ")-(" << q.x << "," << q.y
+        << ")";
   }
   EXPECT_EQ(boundary, t.report.boundary_edges);
   EXPECT_EQ((edges.size() - boundary) / 2, t.report.shared_edges);
@@ -184,7 +185,9 @@ TEST(Tessellation, DifferentSeedGivesDifferentResult) {
 }
 
 TEST(Tessellation, InteriorEdgesSharedOppositelyAndBoundaryEdgesOnRectangle) {
-  for (const std::uint64_t seed : {1, 2, 3}) expect_watertight(tessellate(rectangle(700, seed)), false);
+  for (const std::uint64_t seed : {1, 2, 3}) {
+    expect_watertight(tessellate(rectangle(700, seed)), false);
+  }
 }
 
 TEST(Tessellation, InteriorEdgesSharedOppositelyAndBoundaryEdgesOnDisc) {

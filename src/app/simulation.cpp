@@ -41,13 +41,10 @@ double mean_edge(const geometry::Tessellation& t) {
   return n ? sum / static_cast<double>(n) : 0.0;
 }
 
-struct Setup {
-  std::unique_ptr<model::Model> model;
-  std::unique_ptr<solver::Solver> solver;
-};
+}  // namespace
 
-Setup make_setup(const io::ModelConfig& cfg, const geometry::Tessellation& tess) {
-  Setup s;
+PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessellation& tess) {
+  PreparedModel s;
   const double d = cfg.rounding_length > 0 ? cfg.rounding_length : 0.05 * mean_edge(tess);
   s.model = std::make_unique<model::Model>(model::build_model(tess, {cfg.density, d, true}));
   std::vector<std::unique_ptr<laws::LawGroup>> groups;
@@ -67,6 +64,8 @@ Setup make_setup(const io::ModelConfig& cfg, const geometry::Tessellation& tess)
   s.solver->initialise();
   return s;
 }
+
+namespace {
 
 io::VtkFrame make_frame(const model::Model& m, const solver::Solver& solver) {
   io::VtkFrame f;
@@ -135,7 +134,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
 }  // namespace
 
 std::string describe_contacts(const io::ModelConfig& cfg, const geometry::Tessellation& specimen) {
-  Setup s = make_setup(cfg, specimen);
+  PreparedModel s = prepare_model(cfg, specimen);
   std::string out = "contacts: id block_a block_b length_m law";
   const auto& groups = s.solver->laws();
   for (auto n : groups[0]->property_names()) out += fmt::format(" {}", n);
@@ -153,7 +152,7 @@ std::string describe_contacts(const io::ModelConfig& cfg, const geometry::Tessel
 RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& specimen,
                      const RunOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
-  Setup setup = make_setup(cfg, specimen);
+  PreparedModel setup = prepare_model(cfg, specimen);
   model::Model& model = *setup.model;
   solver::Solver& solver = *setup.solver;
   const loading::SpecimenBoundary boundary(model);

@@ -115,9 +115,9 @@ void add_collapse_warning(const CollapseSummary& collapse, SpecimenReport& repor
         collapse.relaxed_seeds, collapse.min_edge_length * kMm));
   }
   if (collapse.edges == 0) return;
-  report.warnings.push_back(printf_string(
-      "collapsed %zu edges shorter than %.4g mm (max vertex shift %.3g mm)", collapse.edges,
-      collapse.min_edge_length * kMm, collapse.max_shift * kMm));
+  report.warnings.push_back(
+      printf_string("collapsed %zu edges shorter than %.4g mm (max vertex shift %.3g mm)",
+                    collapse.edges, collapse.min_edge_length * kMm, collapse.max_shift * kMm));
 }
 
 void add_shape_warnings(const std::vector<Point>& vertices, const Blocks& blocks,
@@ -155,21 +155,21 @@ void add_vertex_warnings(const std::vector<Point>& vertices, const Blocks& block
     return length(vertices[e.a], vertices[e.b]) < short_limit;
   });
   if (short_edges > 0) {
-    report.warnings.push_back(printf_string(
-        "%zu near-degenerate vertex pairs (edges < %.3g mm, 1%% of mean edge); "
-        "set min_edge_length to collapse them",
-        static_cast<std::size_t>(short_edges), short_limit * kMm));
+    report.warnings.push_back(
+        printf_string("%zu near-degenerate vertex pairs (edges < %.3g mm, 1%% of mean edge); "
+                      "set min_edge_length to collapse them",
+                      static_cast<std::size_t>(short_edges), short_limit * kMm));
   }
   std::vector<std::uint32_t> valence(vertices.size(), 0);
   for (const Block& block : blocks) {
     for (const std::uint32_t v : block) ++valence[v];
   }
-  const auto crowded = std::count_if(valence.begin(), valence.end(),
-                                     [](std::uint32_t n) { return n >= 4; });
+  const auto crowded =
+      std::count_if(valence.begin(), valence.end(), [](std::uint32_t n) { return n >= 4; });
   if (crowded > 0) {
-    report.warnings.push_back(printf_string(
-        "%zu vertices shared by 4 or more blocks (corner-to-corner contacts)",
-        static_cast<std::size_t>(crowded)));
+    report.warnings.push_back(
+        printf_string("%zu vertices shared by 4 or more blocks (corner-to-corner contacts)",
+                      static_cast<std::size_t>(crowded)));
   }
 }
 
@@ -248,8 +248,8 @@ std::string format_report(const SpecimenReport& r) {
   text += printf_string("  outline area:      %.6g mm^2\n", r.outline_area * kMm2);
   text += printf_string("  edges:             %zu shared (%zu point contacts), %zu on outline\n",
                         r.shared_edges, 2 * r.shared_edges, r.boundary_edges);
-  text += printf_string("  edge length:       min %.4g  mean %.4g  max %.4g mm\n",
-                        r.edge_min * kMm, r.edge_mean * kMm, r.edge_max * kMm);
+  text += printf_string("  edge length:       min %.4g  mean %.4g  max %.4g mm\n", r.edge_min * kMm,
+                        r.edge_mean * kMm, r.edge_max * kMm);
   text += printf_string("  block area:        min %.4g  mean %.4g  max %.4g mm^2\n",
                         r.area_min * kMm2, r.area_mean * kMm2, r.area_max * kMm2);
   text += printf_string("  smallest angle:    %.3g degrees\n", r.smallest_angle_deg);

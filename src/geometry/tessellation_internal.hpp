@@ -21,8 +21,8 @@ struct Edge {
 
 struct CollapseSummary {
   std::size_t edges = 0;
-  double min_edge_length = 0.0;  // m
-  double max_shift = 0.0;        // m, largest vertex displacement caused by the collapse
+  double min_edge_length = 0.0;   // m
+  double max_shift = 0.0;         // m, largest vertex displacement caused by the collapse
   std::size_t relaxed_seeds = 0;  // seeds of too thin cells moved to their cell centroid first
 };
 

@@ -33,11 +33,12 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
 using FaceBase = CGAL::Triangulation_face_base_2<Kernel>;
 using Delaunay =
-    CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>>;
+    CGAL::Delaunay_triangulation_2<Kernel,
+                                   CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>>;
 
 using Polygon = std::vector<Point>;
 
-constexpr double kWeldTolerance = 1e-9;     // relative to the specimen size
+constexpr double kWeldTolerance = 1e-9;      // relative to the specimen size
 constexpr double kPoissonEdgeFactor = 0.65;  // mean Voronoi edge ~ 0.65 sqrt(area / N)
 constexpr double kCountTolerance = 0.003;    // relative mean-edge error that ends the count search
 constexpr int kCountPasses = 5;
@@ -80,9 +81,8 @@ void validate(const TessellationSettings& s) {
           "exactly one of mean_edge_length and block_count must be set");
   require(s.block_count == 0 || s.block_count >= 2, "at least 2 blocks are needed");
   require(static_cast<std::size_t>(s.block_count) <= kMaxBlocks, "block_count is too large");
-  require(s.mean_edge_length < smallest_extent(o), "mean_edge_length (" +
-                                                       mm(s.mean_edge_length) +
-                                                       ") is larger than the specimen");
+  require(s.mean_edge_length < smallest_extent(o),
+          "mean_edge_length (" + mm(s.mean_edge_length) + ") is larger than the specimen");
 }
 
 // Where a vertex sits on the outline: corner k lies on segments k-1 and k.
@@ -653,7 +653,8 @@ class EdgeCollapser {
     std::vector<Point> goals{neighbour_centroid(v)};
     for (std::uint32_t k = first_block_[v]; k < first_block_[v + 1]; ++k) {
       const Block& block = blocks_[block_of_[k]];
-      const auto i = static_cast<std::size_t>(std::find(block.begin(), block.end(), v) - block.begin());
+      const auto i =
+          static_cast<std::size_t>(std::find(block.begin(), block.end(), v) - block.begin());
       const Point next = vertices_[block[(i + 1) % block.size()]];
       const Point prev = vertices_[block[(i + block.size() - 1) % block.size()]];
       goals.push_back(0.5 * (next + prev));
@@ -665,8 +666,8 @@ class EdgeCollapser {
   void for_each_neighbour(std::uint32_t v, Visit&& visit) const {
     for (std::uint32_t k = first_block_[v]; k < first_block_[v + 1]; ++k) {
       const Block& block = blocks_[block_of_[k]];
-      const std::size_t i = static_cast<std::size_t>(std::find(block.begin(), block.end(), v) -
-                                                      block.begin());
+      const std::size_t i =
+          static_cast<std::size_t>(std::find(block.begin(), block.end(), v) - block.begin());
       visit(block[(i + 1) % block.size()]);
       visit(block[(i + block.size() - 1) % block.size()]);
     }
@@ -684,7 +685,8 @@ class EdgeCollapser {
 
   double shortest_edge_at(std::uint32_t v, Point p) const {
     double shortest = std::numeric_limits<double>::infinity();
-    for_each_neighbour(v, [&](std::uint32_t w) { shortest = std::min(shortest, length(p, vertices_[w])); });
+    for_each_neighbour(
+        v, [&](std::uint32_t w) { shortest = std::min(shortest, length(p, vertices_[w])); });
     return shortest;
   }
 
@@ -801,8 +803,9 @@ double next_count(const std::vector<std::pair<double, double>>& samples, double 
   if (samples.size() >= 2) {
     const auto& [n0, m0] = samples[samples.size() - 2];
     const auto& [n1, m1] = samples.back();
-    if (n1 != n0) slope = std::clamp((std::log(m1) - std::log(m0)) / (std::log(n1) - std::log(n0)),
-                                     -1.0, -0.25);
+    if (n1 != n0)
+      slope =
+          std::clamp((std::log(m1) - std::log(m0)) / (std::log(n1) - std::log(n0)), -1.0, -0.25);
   }
   const auto& [n, m] = samples.back();
   const double step = std::clamp((std::log(target) - std::log(m)) / slope, -1.5, 1.5);
@@ -876,10 +879,10 @@ double disc_segment_length(const TessellationSettings& s) {
 Tessellation tessellate(const TessellationSettings& settings) {
   validate(settings);
   const OutlinePolygon outline(settings.outline, disc_segment_length(settings));
-  Candidate c = settings.block_count > 0
-                    ? build_candidate(outline, settings,
-                                      static_cast<std::size_t>(settings.block_count))
-                    : build_for_mean_edge(outline, settings);
+  Candidate c =
+      settings.block_count > 0
+          ? build_candidate(outline, settings, static_cast<std::size_t>(settings.block_count))
+          : build_for_mean_edge(outline, settings);
   renumber_along_hilbert(c.vertices, c.blocks);
   Tessellation result;
   result.report = detail::build_report(c.vertices, c.blocks, outline.area(), c.collapse);

@@ -98,11 +98,12 @@ bool key_less(const Contact& x, const Contact& y) {
 }
 
 // Lengths of new contacts from the spacing of all contacts between the same two blocks: each
-// contact represents the joint up to halfway to its neighbours, plus the rounding length at the ends.
+// contact represents the joint up to halfway to its neighbours, plus the rounding length at the ends
+// (so an intact shared edge gives each end contact half its length, as in UDEC).
 void assign_lengths(std::vector<Candidate>& pair_contacts, double d) {
   const std::size_t k = pair_contacts.size();
-  if (k == 1) {
-    pair_contacts[0].contact.length = 2.0 * d;
+  if (k == 1) {  // a corner pressing on a face: half a typical edge (d is 5 % of the mean edge)
+    if (pair_contacts[0].contact.length == 0.0) pair_contacts[0].contact.length = 10.0 * d;
     return;
   }
   const Point p0 = pair_contacts.front().point;

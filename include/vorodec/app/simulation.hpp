@@ -6,11 +6,20 @@
 
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/io/model_file.hpp"
+#include "vorodec/model/model.hpp"
+#include "vorodec/solver/solver.hpp"
 
 namespace vorodec::app {
 
 // The specimen of a model file: tessellated, or loaded from a prepared specimen file.
 geometry::Tessellation make_specimen(const io::ModelConfig& cfg);
+
+// A model ready to step: blocks, platens and initial contacts detected.
+struct PreparedModel {
+  std::unique_ptr<model::Model> model;
+  std::unique_ptr<solver::Solver> solver;
+};
+PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessellation& specimen);
 
 struct RunOptions {
   std::filesystem::path out;  // results folder

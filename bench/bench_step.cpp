@@ -1,0 +1,68 @@
+// The rigid-block Mohr-Coulomb step (geometry + laws + forces + integration, detection amortised
+// as it runs) on the default model and on larger specimens of the same outline's block size.
+// Reports contact updates per second (cu/s) per thread count and bytes per contact.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <cmath>
+
+#include "vorodec/app/simulation.hpp"
+#include "vorodec/loading/boundary.hpp"
+
+using namespace vorodec;
+
+namespace {
+
+io::ModelConfig default_model() {
+  return io::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
+}
+
+// The default model's material on a square-ish specimen with `blocks` blocks of the same size.
+io::ModelConfig scaled_model(int blocks) {
+  io::ModelConfig cfg = default_model();
+  const double area_per_block = 0.05 * 0.1 / 1302.0;
+  const double width = std::sqrt(area_per_block * blocks / 2.0);
+  cfg.tessellation.outline.width = width;
+  cfg.tessellation.outline.height = 2.0 * width;
+  cfg.tessellation.block_count = blocks;
+  return cfg;
+}
+
+void run_steps(benchmark::State& state, const io::ModelConfig& cfg) {
+  omp_set_num_threads(static_cast<int>(state.range(1)));
+  const auto tess = app::make_specimen(cfg);
+  app::PreparedModel pm = app::prepare_model(cfg, tess);
+  const loading::SpecimenBoundary boundary(*pm.model);
+  boundary.set_platen_velocity(*pm.model, 0.05);
+  for (int i = 0; i < 2000; ++i) pm.solver->step();  // load the contacts first
+  std::size_t updates = 0;
+  for (auto _ : state) {
+    pm.solver->step();
+    updates += pm.model->contacts.size();
+  }
+  const double threads = static_cast<double>(state.range(1));
+  state.counters["contacts"] = static_cast<double>(pm.model->contacts.size());
+  state.counters["cu/s"] = benchmark::Counter(static_cast<double>(updates), benchmark::Counter::kIsRate);
+  state.counters["cu/s/core"] =
+      benchmark::Counter(static_cast<double>(updates) / threads, benchmark::Counter::kIsRate);
+  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
+                                                 benchmark::Counter::kIsRate);
+  state.counters["law_bytes/contact"] =
+      static_cast<double>(pm.solver->laws()[0]->bytes_per_contact() + sizeof(model::Contact) +
+                          sizeof(model::ContactForce) + 2 * sizeof(std::uint32_t));
+}
+
+void BM_DefaultModelStep(benchmark::State& state) { run_steps(state, default_model()); }
+void BM_ScaledStep(benchmark::State& state) { run_steps(state, scaled_model(static_cast<int>(state.range(0)))); }
+
+}  // namespace
+
+BENCHMARK(BM_DefaultModelStep)->Args({1302, 1})->Args({1302, 2})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ScaledStep)
+    ->Args({1000, 1})
+    ->Args({10000, 1})
+    ->Args({10000, 2})
+    ->Args({100000, 1})
+    ->Args({100000, 2})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();

@@ -1,0 +1,125 @@
+// Bad input: one clear message naming file, key and line, and exit code 2 — never a crash.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* good_model = R"(seed = 3
+[specimen]
+width = 0.02
+height = 0.04
+block_count = 60
+[blocks]
+density = 2600
+[joints]
+jkn = 2e13
+jks = 8e12
+tension = 10e6
+cohesion = 20e6
+friction = 30
+[[stage]]
+platen_velocity = 0.05
+end_axial_strain = 0.001
+)";
+
+struct Outcome {
+  int code;
+  std::string output;
+};
+
+Outcome run(const std::string& args) {
+  const std::string cmd = std::string(VORODEC_BINARY) + " " + args + " 2>&1";
+  Outcome o{-1, {}};
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) o.output += buf;
+  const int status = pclose(p);
+  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+fs::path write_model(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "vorodec_bad_input";
+  fs::create_directories(dir);
+  const fs::path file = dir / (name + ".toml");
+  std::ofstream(file) << text;
+  return file;
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return text.replace(pos, from.size(), to);
+}
+
+// Checks `vorodec check` on a model edited from the good one.
+void expect_rejected(const std::string& name, const std::string& text, const std::string& key,
+                     int line, const std::string& phrase) {
+  const fs::path file = write_model(name, text);
+  const Outcome o = run("check " + file.string());
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find(file.string() + ":" + std::to_string(line)), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find(key), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find(phrase), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("terminate"), std::string::npos) << o.output;
+}
+
+}  // namespace
+
+TEST(BadInput, GoodModelPassesCheck) {
+  const Outcome o = run("check " + write_model("good", good_model).string());
+  EXPECT_EQ(o.code, 0) << o.output;
+}
+
+TEST(BadInput, MisspelledKeyIsNamedWithLineAndSuggestion) {
+  expect_rejected("misspelled", replace(good_model, "cohesion = 20e6", "cohesoin = 20e6"),
+                  "joints.cohesoin", 12, "did you mean 'cohesion'");
+}
+
+TEST(BadInput, WrongTypeIsRejected) {
+  expect_rejected("wrong_type", replace(good_model, "friction = 30", "friction = \"thirty\""),
+                  "joints.friction", 13, "must be a number");
+}
+
+TEST(BadInput, NegativeStiffnessIsRejected) {
+  expect_rejected("negative_jkn", replace(good_model, "jkn = 2e13", "jkn = -2e13"), "joints.jkn", 9,
+                  "must be > 0");
+}
+
+TEST(BadInput, ZeroWeibullShapeIsRejected) {
+  expect_rejected("weibull_shape",
+                  replace(good_model, "tension = 10e6", "tension = { weibull_shape = 0, mean = 10e6 }"),
+                  "joints.tension.weibull_shape", 11, "must be > 0");
+}
+
+TEST(BadInput, MissingRequiredKeyIsNamed) {
+  expect_rejected("missing_density", replace(good_model, "density = 2600", ""), "blocks.density", 7,
+                  "required key is missing");
+}
+
+TEST(BadInput, TomlSyntaxErrorGivesLine) {
+  expect_rejected("syntax", replace(good_model, "width = 0.02", "width = = 0.02"), "", 3, "");
+}
+
+TEST(BadInput, ImpossibleGeometryIsReportedAgainstTheSpecimenTable) {
+  expect_rejected("geometry", replace(good_model, "block_count = 60", "block_count = 60\nmin_edge_length = 0.05"),
+                  "[specimen]", 2, "impossible geometry");
+}
+
+TEST(BadInput, UnwritableOutputFolderIsRejected) {
+  const fs::path file = write_model("good_for_out", good_model);
+  const Outcome o = run("run " + file.string() + " --out /proc/vorodec_cannot_write_here");
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find("--out"), std::string::npos) << o.output;
+}
+
+TEST(BadInput, UnknownCommandLineOptionExitsWithTwo) {
+  EXPECT_EQ(run("run --no-such-option x.toml").code, 2);
+}
