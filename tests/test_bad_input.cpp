@@ -100,7 +100,7 @@ TEST(BadInput, ZeroWeibullShapeIsRejected) {
 }
 
 TEST(BadInput, MissingRequiredKeyIsNamed) {
-  expect_rejected("missing_density", replace(good_model, "density = 2600", ""), "blocks.density", 7,
+  expect_rejected("missing_density", replace(good_model, "density = 2600", ""), "blocks.density", 6,
                   "required key is missing");
 }
 

@@ -53,6 +53,7 @@ LawChoice read_law(TomlSection& sec, const std::string& default_law) {
     sec.fail("law", fmt::format("unknown contact law '{}' (known:{})", choice.name, names));
   }
   for (const laws::ParamSpec& spec : info->params) {
+    sec.node(spec.key);  // a known key of this law, even where absent (for "did you mean")
     if (sec.has(spec.key)) {
       choice.params.emplace(std::string(spec.key), read_property(sec, spec));
     } else if (!std::isnan(spec.default_value)) {

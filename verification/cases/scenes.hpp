@@ -7,7 +7,7 @@
 #include "vorodec/model/build.hpp"
 #include "vorodec/solver/solver.hpp"
 
-namespace vorodec::test {
+namespace vorodec::verification {
 
 inline std::vector<model::Point> square(double x0, double y0, double size) {
   return {{x0, y0}, {x0 + size, y0}, {x0 + size, y0 + size}, {x0, y0 + size}};
@@ -34,4 +34,4 @@ inline std::unique_ptr<solver::Solver> make_solver(model::Model& m, const char* 
   return solver;
 }
 
-}  // namespace vorodec::test
+}  // namespace vorodec::verification

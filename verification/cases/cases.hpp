@@ -1,0 +1,46 @@
+#pragma once
+// Verification cases: each runs one scene against its analytic or published reference and
+// returns what it measured. The unit tests assert on them; verification/run.sh reports them.
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vorodec::verification {
+
+struct CaseResult {
+  std::string id;         // A1, A3, B1 ...
+  std::string name;       // what is checked
+  std::string reference;  // formula or source
+  double expected = 0;    // reference value
+  double measured = 0;
+  double error = 0;       // relative error |measured - expected| / |expected| (or as stated)
+  double tolerance = 0;   // on `error`
+  std::string settings;   // discretisation used
+  double seconds = 0;     // wall time
+  bool pass() const { return error <= tolerance; }
+};
+
+// Analytic cases (fast: part of the unit tests too).
+CaseResult a1_mass_properties();
+CaseResult a2_tessellation_area();
+CaseResult a3_bonded_pair_period();
+CaseResult a3_bonded_pair_energy_drift();
+CaseResult a4_incline(double angle_deg);  // sticking: measured = displacement (m), expected 0
+CaseResult a5_direct_shear_peak();
+CaseResult a5_direct_shear_residual();
+CaseResult a5_dilation();
+CaseResult a6_direct_tension();
+CaseResult a7_weibull_ks();
+CaseResult a7_weibull_mean();
+CaseResult a8_local_damping();
+
+// Published results: whole model runs (minutes), run by verification/run.sh only.
+std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::string& binary);
+
+struct NamedCase {
+  std::string id;
+  std::function<CaseResult()> run;
+};
+std::vector<NamedCase> analytic_cases();
+
+}  // namespace vorodec::verification

@@ -1,0 +1,77 @@
+#include <fmt/format.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "cases.hpp"
+
+namespace vorodec::verification {
+
+namespace {
+
+double json_number(const std::string& text, const std::string& key) {
+  const std::regex re("\"" + key + "\": ([-0-9.eE+]+)");
+  std::smatch m;
+  return std::regex_search(text, m, re) ? std::stod(m[1]) : std::nan("");
+}
+
+struct Summary {
+  std::string text;
+  double seconds;
+};
+
+Summary run_model(const std::string& binary, const std::filesystem::path& model,
+                  const std::filesystem::path& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string cmd = fmt::format("{} run {} --no-vtk --out {} > {}/log.txt 2>&1", binary,
+                                      model.string(), out.string(), out.string());
+  std::filesystem::create_directories(out);
+  if (std::system(cmd.c_str()) == -1) return {"", 0};
+  std::ifstream in(out / "summary.json");
+  return {{std::istreambuf_iterator<char>(in), {}},
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
+}
+
+}  // namespace
+
+std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::string& binary) {
+  const std::filesystem::path model = std::filesystem::path(source_dir) / "models/ucs_marble.toml";
+  const auto out = std::filesystem::temp_directory_path() / "vorodec_verification/b1";
+  const Summary s = run_model(binary, model, out);
+  const std::string paper =
+      "marble, UDEC Voronoi (variable-amplitude cyclic loading paper, Rock Mech Rock Eng), Table 1";
+  const std::string settings = "models/ucs_marble.toml: 1302 blocks, 5e-3 m/s, time_step 5e-7 s";
+  std::vector<CaseResult> r;
+  const auto add = [&](std::string name, double expected, double measured, double tol) {
+    CaseResult c{"B1", std::move(name), paper, expected, measured,
+                 std::abs(measured - expected) / expected, tol, settings, s.seconds};
+    if (std::isnan(measured)) c.error = 1.0;
+    r.push_back(c);
+  };
+  add("UCS (Pa)", 47.89e6, json_number(s.text, "peak_stress_Pa"), 0.05);
+  add("Young's modulus at 50 % of peak (Pa)", 29.22e9, json_number(s.text, "youngs_modulus_Pa"), 0.05);
+  add("Poisson's ratio", 0.225, json_number(s.text, "poisson_ratio"), 0.05);
+
+  // The loading rate must not decide the UCS: the same model at half the platen speed.
+  std::ifstream in(model);
+  std::string text{std::istreambuf_iterator<char>(in), {}};
+  text = std::regex_replace(text, std::regex("platen_velocity = 5e-3 "), "platen_velocity = 2.5e-3 ");
+  const auto half = out.parent_path() / "b1_half_rate.toml";
+  std::ofstream(half) << text;
+  const Summary h = run_model(binary, half, out.parent_path() / "b1_half");
+  CaseResult c{"B1", "UCS at 5e-3 m/s against UCS at 2.5e-3 m/s",
+               "converged-rate reference: the same model at half the loading rate",
+               json_number(h.text, "peak_stress_Pa"), json_number(s.text, "peak_stress_Pa"), 0,
+               0.02, "half rate: 2.5e-3 m/s", h.seconds};
+  c.error = std::abs(c.measured - c.expected) / c.expected;
+  if (std::isnan(c.error)) c.error = 1.0;
+  r.push_back(c);
+  return r;
+}
+
+}  // namespace vorodec::verification

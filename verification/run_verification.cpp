@@ -1,0 +1,57 @@
+// Runs the verification cases and writes a markdown report.
+// Usage: vorodec_verify <source dir> <vorodec binary> <report.md> [--analytic-only]
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <string>
+
+#include "cases/cases.hpp"
+
+using namespace vorodec::verification;
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::fprintf(stderr, "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only]\n", argv[0]);
+    return 2;
+  }
+  const bool analytic_only = argc > 4 && std::string(argv[4]) == "--analytic-only";
+  std::vector<CaseResult> results;
+  for (const auto& c : analytic_cases()) {
+    results.push_back(c.run());
+    std::fprintf(stderr, "%s %s: %s\n", c.id.c_str(), results.back().name.c_str(),
+                 results.back().pass() ? "pass" : "FAIL");
+  }
+  if (!analytic_only)
+    for (auto& r : b1_marble_ucs(argv[1], argv[2])) {
+      std::fprintf(stderr, "B1 %s: %s\n", r.name.c_str(), r.pass() ? "pass" : "FAIL");
+      results.push_back(r);
+    }
+  char host[256] = "?";
+  gethostname(host, sizeof host);
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  std::ofstream out(argv[3]);
+  out << "# vorodec verification report\n\n"
+      << fmt::format("Generated {} on {} ({} cores) by `verification/run.sh`{}.\n\n", date, host,
+                     sysconf(_SC_NPROCESSORS_ONLN), analytic_only ? " (analytic cases only)" : "")
+      << "Error is relative to the reference unless the case says otherwise (A1 and A7: the\n"
+         "statistic itself; A3 drift: relative energy change; A4 sticking: displacement in m).\n\n"
+      << "| case | check | reference | expected | result | error | tolerance | pass | wall time | settings |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|\n";
+  int failed = 0;
+  for (const auto& r : results) {
+    failed += !r.pass();
+    out << fmt::format("| {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {:.3g} | {} | {:.2f} s | {} |\n",
+                       r.id, r.name, r.reference, r.expected, r.measured, r.error, r.tolerance,
+                       r.pass() ? "yes" : "**no**", r.seconds, r.settings);
+  }
+  out << fmt::format("\n{} of {} checks pass.\n", results.size() - static_cast<std::size_t>(failed),
+                     results.size());
+  std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, results.size(), argv[3]);
+  return failed ? 1 : 0;
+}
