@@ -83,6 +83,10 @@ def plot(data, title, out):
         ax.plot(strain_sign * data["volumetric_strain"], stress, color="tab:purple", lw=1.4,
                 ls="--", label="volumetric strain")
     ax.axvline(0.0, color="0.6", lw=0.8)
+    # Post-peak gauges on fragments can run off far; keep the axial curve readable.
+    amax = np.nanmax(np.abs(ea)) if np.isfinite(ea).any() else 0.0
+    if amax > 0:
+        ax.set_xlim(-1.5 * amax, 1.1 * amax)
     ax.set_xlabel("strain (-), compression positive")
     ax.set_ylabel("axial stress (MPa)")
     ax.grid(True, lw=0.4, alpha=0.5)

@@ -36,11 +36,7 @@ bool prepare_out(const fs::path& out) {
 }
 
 void print_report(const geometry::Tessellation& t, const io::ModelConfig& cfg) {
-  if (cfg.specimen_file) {
-    fmt::print("specimen loaded from {} ({} blocks)\n", cfg.specimen_file->string(),
-               t.blocks.size());
-    return;
-  }
+  if (cfg.specimen_file) fmt::print("specimen loaded from {}\n", cfg.specimen_file->string());
   fmt::print("{}", geometry::format_report(t.report));
   for (const auto& w : t.report.warnings) fmt::print(stderr, "warning: specimen: {}\n", w);
 }

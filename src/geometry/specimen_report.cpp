@@ -239,6 +239,12 @@ SpecimenReport build_report(const std::vector<Point>& vertices, const Blocks& bl
 
 }  // namespace detail
 
+SpecimenReport describe_specimen(const Tessellation& tess) {
+  double area = 0.0;
+  for (const auto& b : tess.blocks) area += detail::signed_area(tess.vertices, b);
+  return detail::build_report(tess.vertices, tess.blocks, area, detail::CollapseSummary{});
+}
+
 std::string format_report(const SpecimenReport& r) {
   using detail::kMm;
   using detail::kMm2;

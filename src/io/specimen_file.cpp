@@ -73,6 +73,7 @@ geometry::Tessellation read_specimen(const std::filesystem::path& file) {
     }
     if (k < 3) fail("a block needs at least 3 corners");
   }
+  t.report = geometry::describe_specimen(t);
   return t;
 }
 

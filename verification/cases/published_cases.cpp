@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 
 #include "cases.hpp"
 
@@ -15,9 +14,9 @@ namespace vorodec::verification {
 namespace {
 
 double json_number(const std::string& text, const std::string& key) {
-  const std::regex re("\"" + key + "\": ([-0-9.eE+]+)");
-  std::smatch m;
-  return std::regex_search(text, m, re) ? std::stod(m[1]) : std::nan("");
+  const std::string tag = "\"" + key + "\": ";
+  const auto pos = text.find(tag);
+  return pos == std::string::npos ? std::nan("") : std::strtod(text.c_str() + pos + tag.size(), nullptr);
 }
 
 struct Summary {
@@ -60,7 +59,9 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
   // The loading rate must not decide the UCS: the same model at half the platen speed.
   std::ifstream in(model);
   std::string text{std::istreambuf_iterator<char>(in), {}};
-  text = std::regex_replace(text, std::regex("platen_velocity = 5e-3 "), "platen_velocity = 2.5e-3 ");
+  const std::string from = "platen_velocity = 5e-3 ";
+  if (const auto pos = text.find(from); pos != std::string::npos)
+    text.replace(pos, from.size(), "platen_velocity = 2.5e-3 ");
   const auto half = out.parent_path() / "b1_half_rate.toml";
   std::ofstream(half) << text;
   const Summary h = run_model(binary, half, out.parent_path() / "b1_half");

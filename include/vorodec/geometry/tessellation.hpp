@@ -58,6 +58,10 @@ class GeometryError : public std::runtime_error {
 // that cannot be met).
 Tessellation tessellate(const TessellationSettings& settings);
 
+// The report of an existing tessellation (e.g. a prepared specimen file); the outline area is
+// taken as the sum of the block areas.
+SpecimenReport describe_specimen(const Tessellation& tess);
+
 // Multi-line, human-readable specimen report (printed after building).
 std::string format_report(const SpecimenReport& report);
 

@@ -27,10 +27,12 @@ struct ContactKinematics {
 enum class ContactEvent : std::uint8_t { none, slip, tensile_failure, shear_failure };
 
 struct LawResult {
-  double fn;      // N, normal force, compression positive
-  double fs;      // N, shear force along s = (-n_y, n_x)
-  double kn, ks;  // N/m, current spring stiffnesses (time step and strain energy)
+  double fn;  // N, normal force, compression positive
+  double fs;  // N, shear force along s = (-n_y, n_x)
   ContactEvent event;
+  // The step followed the linear springs exactly (no slip, failure, cut-off or dilation), so it
+  // dissipated nothing and the energy bookkeeping can be skipped.
+  bool elastic;
 };
 
 // A crack: a contact that failed, recorded once at the intact -> failed transition.

@@ -76,21 +76,25 @@ class LawGroupOf final : public LawGroup {
         const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
         const double fn0 = c.fn, fs0 = c.fs;
         const LawResult r = Law::evaluate(k, props[i - begin], state[i - begin]);
-        // Energy a contact dissipates in one step: work done on it minus its strain-energy change.
-        const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
-        const double stored = Law::strain_energy(props[i - begin], r.fn, r.fs) -
-                              Law::strain_energy(props[i - begin], fn0, fs0);
+        // Energy a contact dissipates in one step: work done on it minus its strain-energy change
+        // (zero by construction in an elastic step).
+        double dissipated = 0.0;
+        if (!r.elastic) {
+          const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
+          dissipated = work - (Law::strain_energy(props[i - begin], r.fn, r.fs) -
+                               Law::strain_energy(props[i - begin], fn0, fs0));
+        }
         c.gap = f.gap;
         c.u_s += k.du_s;
         c.fn = r.fn;
         c.fs = r.fs;
         if (r.event == ContactEvent::tensile_failure || r.event == ContactEvent::shear_failure) {
-          breakage += work - stored;
+          breakage += dissipated;
           c.state = r.event == ContactEvent::tensile_failure ? model::ContactState::tensile_failed
                                                              : model::ContactState::shear_failed;
           cracks.push_back({ctx.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
         } else {
-          slip += work - stored;
+          slip += dissipated;
           if (c.state <= model::ContactState::slipping)
             c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
                                                     : model::ContactState::intact;

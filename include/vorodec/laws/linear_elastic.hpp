@@ -32,7 +32,7 @@ struct LinearElastic {
   }
   static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {
     st.fs -= p.ks * k.du_s;
-    return {-p.kn * k.gap, st.fs, p.kn, p.ks, ContactEvent::none};
+    return {-p.kn * k.gap, st.fs, ContactEvent::none, true};
   }
 };
 

@@ -40,10 +40,11 @@ struct MohrCoulomb {
   }
 
   static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {
-    LawResult r{-p.kn * (k.gap - st.u_dil), 0.0, p.kn, p.ks, ContactEvent::none};
+    LawResult r{-p.kn * (k.gap - st.u_dil), 0.0, ContactEvent::none, true};
     if (r.fn < -(st.broken ? 0.0 : p.tension_force)) {
       if (!st.broken) r.event = ContactEvent::tensile_failure;
       st.broken = true;
+      r.elastic = false;
       st.fs = 0.0;
       r.fn = 0.0;  // an open joint carries neither tension (residual 0) nor shear
       return r;
@@ -51,6 +52,7 @@ struct MohrCoulomb {
     const double fs_trial = st.fs - p.ks * k.du_s;
     double fmax = st.broken ? r.fn * p.tan_phi_res : p.cohesion_force + r.fn * p.tan_phi;
     if (std::abs(fs_trial) > std::max(fmax, 0.0)) {
+      r.elastic = false;
       if (!st.broken) {
         r.event = ContactEvent::shear_failure;
         st.broken = true;
