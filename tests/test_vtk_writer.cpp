@@ -17,7 +17,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -125,11 +124,18 @@ std::vector<PvdEntry> parse_pvd(const fs::path& file) {
   EXPECT_NE(text.find("<VTKFile type=\"Collection\""), std::string::npos) << text;
   EXPECT_NE(text.find("</Collection>"), std::string::npos) << text;
   EXPECT_NE(text.find("</VTKFile>"), std::string::npos) << text;
-  const std::regex dataset(R"re(<DataSet\s+timestep="([^"]*)"\s+part="0"\s+file="([^"]*)"\s*/>)re");
+  // Attribute values of each <DataSet .../> entry (no std::regex: GCC 12 warns inside it).
+  const auto attribute = [](const std::string& tag, const std::string& name) {
+    const std::string key = name + "=\"";
+    const auto b = tag.find(key) + key.size();
+    return tag.substr(b, tag.find('"', b) - b);
+  };
   std::vector<PvdEntry> out;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), dataset);
-       it != std::sregex_iterator(); ++it) {
-    out.push_back({std::stod((*it)[1].str()), (*it)[2].str()});
+  for (auto pos = text.find("<DataSet"); pos != std::string::npos;
+       pos = text.find("<DataSet", pos + 1)) {
+    const std::string tag = text.substr(pos, text.find("/>", pos) - pos);
+    if (attribute(tag, "part") != "0") continue;
+    out.push_back({std::stod(attribute(tag, "timestep")), attribute(tag, "file")});
   }
   return out;
 }
