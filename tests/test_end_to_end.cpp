@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vtkCellData.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -27,8 +28,11 @@ int vorodec(const std::string& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// One folder per process: ctest runs each test as its own process, several at a time.
+fs::path base_dir() { return fs::temp_directory_path() / ("vorodec_e2e_" + std::to_string(getpid())); }
+
 fs::path out_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / "vorodec_e2e" / name;
+  const fs::path d = base_dir() / name;
   fs::remove_all(d);
   return d;
 }
@@ -77,7 +81,7 @@ int EndToEnd::run_code_ = -1;
 
 TEST_F(EndToEnd, RunReachesPostPeakAndWritesEveryOutput) {
   ASSERT_EQ(run_code_, 0);
-  const fs::path out = fs::temp_directory_path() / "vorodec_e2e/one";
+  const fs::path out = base_dir() / "one";
   for (const char* f : {"history.csv", "summary.json", "cracks.csv", "vtk/blocks.pvd",
                         "vtk/contacts.pvd", "vtk/cracks.pvd"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
@@ -92,7 +96,7 @@ TEST_F(EndToEnd, RunReachesPostPeakAndWritesEveryOutput) {
 
 TEST_F(EndToEnd, VtkSeriesReadsBackThroughVtk) {
   ASSERT_EQ(run_code_, 0);
-  const fs::path vtk = fs::temp_directory_path() / "vorodec_e2e/one/vtk";
+  const fs::path vtk = base_dir() / "one/vtk";
   vtkNew<vtkXMLPolyDataReader> blocks;
   blocks->SetFileName((vtk / "blocks_000000.vtp").string().c_str());
   blocks->Update();
@@ -117,7 +121,7 @@ TEST_F(EndToEnd, SameSeedGivesIdenticalResultsWithOneAndTwoThreads) {
   ASSERT_EQ(run_code_, 0);
   const fs::path two = out_dir("two");
   ASSERT_EQ(vorodec("run " + model.string() + " --threads 2 --no-vtk --out " + two.string()), 0);
-  const auto a = read_csv(fs::temp_directory_path() / "vorodec_e2e/one/history.csv");
+  const auto a = read_csv(base_dir() / "one/history.csv");
   const auto b = read_csv(two / "history.csv");
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i)
@@ -137,7 +141,7 @@ TEST_F(EndToEnd, PreparedSpecimenReproducesTheRunBitForBit) {
   std::ofstream(reload_model) << text;
   const fs::path again = out_dir("again");
   ASSERT_EQ(vorodec("run " + reload_model.string() + " --threads 1 --no-vtk --out " + again.string()), 0);
-  const auto a = read_csv(fs::temp_directory_path() / "vorodec_e2e/one/history.csv");
+  const auto a = read_csv(base_dir() / "one/history.csv");
   const auto b = read_csv(again / "history.csv");
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "row " << i;
@@ -149,7 +153,7 @@ TEST_F(EndToEnd, PreparedSpecimenReproducesTheRunBitForBit) {
 TEST_F(EndToEnd, StressStrainMatchesCommittedReference) {
   ASSERT_EQ(run_code_, 0);
   const auto ref = read_csv(fs::path(VORODEC_SOURCE_DIR) / "tests/reference/e2e_small_history.csv");
-  const auto now = read_csv(fs::temp_directory_path() / "vorodec_e2e/one/history.csv");
+  const auto now = read_csv(base_dir() / "one/history.csv");
   ASSERT_GT(ref.size(), 10u);
   const double ref_peak = peak_of(ref);
   std::size_t compared = 0;

@@ -4,6 +4,7 @@
 // Output goes to $VORODEC_VTK_TEST_DIR if set, else <gtest temp dir>/vorodec_vtk_writer, and is
 // left in place so that tests/run_paraview_check.sh can open <dir>/series/blocks.pvd afterwards.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -35,7 +36,8 @@ fs::path output_root() {
   if (const char* env = std::getenv("VORODEC_VTK_TEST_DIR"); env != nullptr && *env != '\0') {
     return env;
   }
-  return fs::path(::testing::TempDir()) / "vorodec_vtk_writer";
+  // One folder per process: ctest runs each test as its own process, several at a time.
+  return fs::path(::testing::TempDir()) / ("vorodec_vtk_writer_" + std::to_string(getpid()));
 }
 
 fs::path fresh_dir(const std::string& name) {
