@@ -46,28 +46,26 @@ void add_block(Model& model, std::span<const Point> polygon, double density, Gro
   b.sin_t.push_back(0.0);
   if (b.corner_begin.empty()) b.corner_begin.push_back(0);
   const std::size_t n = polygon.size();
+  const auto first = static_cast<std::uint32_t>(b.corner.size());
+  std::vector<Point> centres(n);
+  std::vector<double> radii(n);
   for (std::size_t i = 0; i < n; ++i) {
-    Point centre;
-    double radius = 0;
     round_corner(polygon[(i + n - 1) % n], polygon[i], polygon[(i + 1) % n], model.rounding_length,
-                 centre, radius);
+                 centres[i], radii[i]);
     b.corner.push_back(polygon[i] - mp.centroid);
-    b.round_centre.push_back(centre - mp.centroid);
-    b.round_radius.push_back(radius);
+    b.round_centre.push_back(centres[i] - mp.centroid);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    const Point e = polygon[j] - polygon[i];
+    const double inv = 1.0 / std::sqrt(dot(e, e));
+    b.shape.push_back({radii[i], inv, dot(centres[i] - polygon[i], inv * e),
+                       dot(centres[j] - polygon[i], inv * e),
+                       first + static_cast<std::uint32_t>(j)});
   }
   b.corner_begin.push_back(static_cast<std::uint32_t>(b.corner.size()));
-  const std::uint32_t first = b.corner_begin[b.corner_begin.size() - 2];
-  for (std::uint32_t i = first; i < b.corner.size(); ++i) {
-    const std::uint32_t j = i + 1 == b.corner.size() ? first : i + 1;
-    b.corner_next.push_back(j);
-    const Point e = b.corner[j] - b.corner[i];
-    const double inv = 1.0 / std::sqrt(dot(e, e));
-    b.edge_inv_length.push_back(inv);
-    b.edge_s0.push_back(dot(b.round_centre[i] - b.corner[i], inv * e));
-    b.edge_s1.push_back(dot(b.round_centre[j] - b.corner[i], inv * e));
-  }
-  b.world_corner.resize(b.corner.size());
-  b.world_centre.resize(b.corner.size());
+  b.world.resize(b.corner.size());
+  b.kin.resize(b.size());
 }
 
 void Blocks::refresh_world() {
@@ -79,11 +77,11 @@ void Blocks::refresh_world() {
     cos_t[b] = c;
     sin_t[b] = s;
     for (std::uint32_t k = corner_begin[b]; k < corner_begin[b + 1]; ++k) {
-      world_corner[k] = {x[b] + c * corner[k].x - s * corner[k].y,
-                         y[b] + s * corner[k].x + c * corner[k].y};
-      world_centre[k] = {x[b] + c * round_centre[k].x - s * round_centre[k].y,
-                         y[b] + s * round_centre[k].x + c * round_centre[k].y};
+      world[k] = {{x[b] + c * corner[k].x - s * corner[k].y, y[b] + s * corner[k].x + c * corner[k].y},
+                  {x[b] + c * round_centre[k].x - s * round_centre[k].y,
+                   y[b] + s * round_centre[k].x + c * round_centre[k].y}};
     }
+    kin[b] = {x[b], y[b], vx[b], vy[b], omega[b]};
   }
 }
 

@@ -31,10 +31,10 @@ Box world_box(const Blocks& bl, std::uint32_t b, double margin) {
 }
 
 // Nearest feature of block b to corner `corner` of block a; the frame's edge is returned in `edge`.
-ContactFrame nearest_feature(const Blocks& bl, std::uint32_t a, std::uint32_t corner,
+ContactFrame nearest_feature(const Blocks& bl, std::uint32_t corner,
                              std::uint32_t b, std::uint32_t& edge) {
-  const Point cA = bl.to_world(a, bl.round_centre[corner]);
-  const double rA = bl.round_radius[corner];
+  const Point cA = bl.world[corner].centre;
+  const double rA = bl.shape[corner].radius;
   ContactFrame best{};
   best.gap = std::numeric_limits<double>::max();
   double deepest = -std::numeric_limits<double>::max();
@@ -42,7 +42,7 @@ ContactFrame nearest_feature(const Blocks& bl, std::uint32_t a, std::uint32_t co
   bool outside = false;
   for (std::uint32_t e0 = bl.corner_begin[b]; e0 < bl.corner_begin[b + 1]; ++e0) {
     const std::uint32_t e1 = bl.next_corner(b, e0);
-    const Point v0 = bl.to_world(b, bl.corner[e0]), v1 = bl.to_world(b, bl.corner[e1]);
+    const Point v0 = bl.world[e0].corner, v1 = bl.world[e1].corner;
     const Point t = v1 - v0;
     const double h = cross(t, cA - v0) / -std::sqrt(dot(t, t));  // distance outside the edge line
     if (h > deepest) {
@@ -51,10 +51,9 @@ ContactFrame nearest_feature(const Blocks& bl, std::uint32_t a, std::uint32_t co
     }
     if (h <= 0) continue;
     outside = true;
-    const ContactFrame f =
-        model::corner_edge_frame(cA, rA, v0, v1, bl.to_world(b, bl.round_centre[e0]),
-                                 bl.round_radius[e0], bl.to_world(b, bl.round_centre[e1]),
-                                 bl.round_radius[e1]);
+    const ContactFrame f = model::corner_edge_frame(cA, rA, v0, v1, bl.world[e0].centre,
+                                                    bl.shape[e0].radius, bl.world[e1].centre,
+                                                    bl.shape[e1].radius);
     if (f.gap < best.gap) {
       best = f;
       edge = e0;
@@ -63,10 +62,9 @@ ContactFrame nearest_feature(const Blocks& bl, std::uint32_t a, std::uint32_t co
   if (!outside) {  // the corner's centre is inside b's polygon: take the least penetrated edge
     const std::uint32_t e0 = deepest_edge, e1 = bl.next_corner(b, e0);
     edge = e0;
-    best = model::corner_edge_frame(
-        cA, rA, bl.to_world(b, bl.corner[e0]), bl.to_world(b, bl.corner[e1]),
-        bl.to_world(b, bl.round_centre[e0]), bl.round_radius[e0],
-        bl.to_world(b, bl.round_centre[e1]), bl.round_radius[e1]);
+    best = model::corner_edge_frame(cA, rA, bl.world[e0].corner, bl.world[e1].corner,
+                                    bl.world[e0].centre, bl.shape[e0].radius, bl.world[e1].centre,
+                                    bl.shape[e1].radius);
   }
   return best;
 }
@@ -75,9 +73,9 @@ ContactFrame nearest_feature(const Blocks& bl, std::uint32_t a, std::uint32_t co
 // outward normals of the corner's two edges. Otherwise the nearest part of that block is an edge,
 // and the contact belongs to the other block's corner.
 bool faces_arc(const Blocks& bl, std::uint32_t a, std::uint32_t k, Point n) {
-  const Point c = bl.world_corner[k];
-  const Point e_in = c - bl.world_corner[bl.prev_corner(a, k)];
-  const Point e_out = bl.world_corner[bl.corner_next[k]] - c;
+  const Point c = bl.world[k].corner;
+  const Point e_in = c - bl.world[bl.prev_corner(a, k)].corner;
+  const Point e_out = bl.world[bl.shape[k].next].corner - c;
   const Point m{-n.x, -n.y};  // from the arc's centre towards the contact
   const Point n_in{e_in.y, -e_in.x}, n_out{e_out.y, -e_out.x};
   const double tol = 1e-6;
@@ -243,7 +241,7 @@ DetectionStats ContactDetector::detect(model::Model& model,
     for (const auto& [a, b] : {std::pair{pa, pb}, std::pair{pb, pa}}) {
       for (std::uint32_t k = bl.corner_begin[a]; k < bl.corner_begin[a + 1]; ++k) {
         std::uint32_t edge = 0;
-        const ContactFrame f = nearest_feature(bl, a, k, b, edge);
+        const ContactFrame f = nearest_feature(bl, k, b, edge);
         bool existing = false;
         for (std::size_t i = 0; i < pair_list.size(); ++i) {
           Contact& c = pair_list[i].contact;

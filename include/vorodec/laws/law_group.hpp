@@ -67,12 +67,11 @@ class LawGroupOf final : public LawGroup {
         model::Contact& c = contacts[i];
         const model::ContactFrame f = model::contact_frame(bl, c);
         const model::Point s{-f.n.y, f.n.x};
-        const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+        const model::BlockKinematics& ka = bl.kin[static_cast<std::size_t>(c.a)];
+        const model::BlockKinematics& kb = bl.kin[static_cast<std::size_t>(c.b)];
         // Relative velocity of a with respect to b at the contact point.
-        const double vrx = (bl.vx[a] - bl.omega[a] * (f.point.y - bl.y[a])) -
-                           (bl.vx[b] - bl.omega[b] * (f.point.y - bl.y[b]));
-        const double vry = (bl.vy[a] + bl.omega[a] * (f.point.x - bl.x[a])) -
-                           (bl.vy[b] + bl.omega[b] * (f.point.x - bl.x[b]));
+        const double vrx = (ka.vx - ka.omega * (f.point.y - ka.y)) - (kb.vx - kb.omega * (f.point.y - kb.y));
+        const double vry = (ka.vy + ka.omega * (f.point.x - ka.x)) - (kb.vy + kb.omega * (f.point.x - kb.x));
         const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
         const double fn0 = c.fn, fs0 = c.fs;
         const LawResult r = Law::evaluate(k, props[i - begin], state[i - begin]);

@@ -40,37 +40,39 @@ inline ContactFrame corner_edge_frame(Point cA, double rA, Point v0, Point v1, P
 // Geometry of contact c from the world arrays (Blocks::refresh_world), walking to a neighbouring
 // edge of b when the corner has moved past the arc at the end of its current edge (updates c.edge).
 inline ContactFrame contact_frame(const Blocks& bl, Contact& c) {
-  const Point cA = bl.world_centre[c.corner];
-  const double rA = bl.round_radius[c.corner];
+  const Point cA = bl.world[c.corner].centre;
+  const double rA = bl.shape[c.corner].radius;
   for (int walk = 0;; ++walk) {
-    const std::uint32_t e0 = c.edge, e1 = bl.corner_next[e0];
-    const Point v0 = bl.world_corner[e0];
-    const Point t = bl.edge_inv_length[e0] * (bl.world_corner[e1] - v0);
+    const std::uint32_t e0 = c.edge;
+    const CornerShape& edge = bl.shape[e0];
+    const std::uint32_t e1 = edge.next;
+    const Point v0 = bl.world[e0].corner;
+    const Point t = edge.inv_length * (bl.world[e1].corner - v0);
     const Point r = cA - v0;
     const double s = dot(r, t);
     ContactFrame f;
-    if (s >= bl.edge_s0[e0] && s <= bl.edge_s1[e0]) {  // the straight part: the common case
+    if (s >= edge.s0 && s <= edge.s1) {  // the straight part: the common case
       f.side = 0;
       f.n = {t.y, -t.x};
       f.gap = dot(r, f.n) - rA;
       f.point = cA - (rA + 0.5 * f.gap) * f.n;
       return f;
     }
-    f.side = s < bl.edge_s0[e0] ? -1 : 1;
+    f.side = s < edge.s0 ? -1 : 1;
     const std::uint32_t ec = f.side < 0 ? e0 : e1;
-    const Point d = cA - bl.world_centre[ec];
+    const Point d = cA - bl.world[ec].centre;
     const double dist = std::sqrt(dot(d, d));
     f.n = (1.0 / dist) * d;
-    f.gap = dist - rA - bl.round_radius[ec];
+    f.gap = dist - rA - bl.shape[ec].radius;
     f.point = cA - (rA + 0.5 * f.gap) * f.n;
     if (walk == 2) return f;
     // Past the arc onto the neighbouring edge? Then that edge is the contact's feature.
     if (f.side < 0) {
       const std::uint32_t ep = bl.prev_corner(static_cast<std::uint32_t>(c.b), e0);
-      if (dot(d, v0 - bl.world_corner[ep]) >= 0.0) return f;
+      if (dot(d, v0 - bl.world[ep].corner) >= 0.0) return f;
       c.edge = ep;
     } else {
-      if (dot(d, bl.world_corner[bl.corner_next[e1]] - bl.world_corner[e1]) <= 0.0) return f;
+      if (dot(d, bl.world[bl.shape[e1].next].corner - bl.world[e1].corner) <= 0.0) return f;
       c.edge = e1;
     }
   }

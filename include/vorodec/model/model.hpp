@@ -12,6 +12,24 @@ using geometry::Point;
 // Which body a block is: the specimen or one of the loading platens.
 enum class Group : std::int32_t { specimen = 0, bottom_platen = 1, top_platen = 2 };
 
+// Constants of a corner's rounded arc and of the block edge that starts at the corner.
+struct CornerShape {
+  double radius;      // m, arc radius
+  double inv_length;  // 1/m, of the edge
+  double s0, s1;      // m, where the edge's straight part (between the end arcs' tangent points)
+                      // begins and ends along it
+  std::uint32_t next; // index of the next corner of the same block
+};
+
+struct CornerWorld {
+  Point corner;  // unrounded corner, world frame
+  Point centre;  // arc centre, world frame
+};
+
+struct BlockKinematics {
+  double x, y, vx, vy, omega;
+};
+
 struct Blocks {
   std::vector<double> x, y, theta;    // centroid (m) and rotation (rad)
   std::vector<double> x0, y0;         // initial centroid (m)
@@ -26,18 +44,16 @@ struct Blocks {
   std::vector<std::uint32_t> corner_begin;  // size blocks + 1
   std::vector<Point> corner;                // unrounded corner
   std::vector<Point> round_centre;          // centre of the rounded corner's arc
-  std::vector<double> round_radius;         // radius of that arc (m)
-  std::vector<std::uint32_t> corner_next;    // index of the next corner of the same block
-  // Constants of the edge that starts at each corner: 1 / length, and where its straight part
-  // (between the tangent points of the end arcs) begins and ends along it (m).
-  std::vector<double> edge_inv_length, edge_s0, edge_s1;
-  // Refreshed once per step by refresh_world(): cosine and sine of theta, world corner positions
-  // and world arc centres.
+  std::vector<CornerShape> shape;           // per corner: arc and edge constants
+  // Refreshed once per step by refresh_world(): cosine and sine of theta, world positions of
+  // corners and arc centres, and the kinematics the contact loop reads (packed: one cache line
+  // per block instead of five arrays).
   std::vector<double> cos_t, sin_t;
-  std::vector<Point> world_corner, world_centre;
+  std::vector<CornerWorld> world;
+  std::vector<BlockKinematics> kin;
 
   std::size_t size() const { return x.size(); }
-  std::uint32_t next_corner(std::uint32_t, std::uint32_t c) const { return corner_next[c]; }
+  std::uint32_t next_corner(std::uint32_t, std::uint32_t c) const { return shape[c].next; }
   std::uint32_t prev_corner(std::uint32_t block, std::uint32_t c) const {
     return c == corner_begin[block] ? corner_begin[block + 1] - 1 : c - 1;
   }
