@@ -52,6 +52,17 @@ int main(int argc, char** argv) {
   }
   out << fmt::format("\n{} of {} checks pass.\n", results.size() - static_cast<std::size_t>(failed),
                      results.size());
+  out << "\n## Stiff and extreme cases\n\nEach is `tests/models/e2e_small.toml` with one change, run "
+         "for at most the steps shown. It must finish or stop with a clear message (exit code 3), "
+         "never produce NaN, crash or hang.\n\n"
+      << "| case | change | exit code | outcome | steps | history finite | wall time | acceptable |\n"
+      << "|---|---|---|---|---|---|---|---|\n";
+  for (const auto& o : stability_cases(argv[1], argv[2])) {
+    failed += !o.acceptable();
+    out << fmt::format("| {} | {} | {} | {} | {} | {} | {:.1f} s | {} |\n", o.name, o.change,
+                       o.exit_code, o.status, o.steps, o.finite ? "yes" : "**no**", o.seconds,
+                       o.acceptable() ? "yes" : "**no**");
+  }
   std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, results.size(), argv[3]);
   return failed ? 1 : 0;
 }

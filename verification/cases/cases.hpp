@@ -37,6 +37,20 @@ CaseResult a8_local_damping();
 // Published results: whole model runs (minutes), run by verification/run.sh only.
 std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::string& binary);
 
+// Stiff and extreme cases: each must finish or stop with a clear message (exit code 3), never
+// produce NaN, crash or hang.
+struct StabilityOutcome {
+  std::string name;
+  std::string change;   // what the case changes in tests/models/e2e_small.toml
+  int exit_code = -1;
+  std::string status;   // summary.json status
+  bool finite = false;  // every history value finite
+  long steps = 0;
+  double seconds = 0;
+  bool acceptable() const { return (exit_code == 0 || exit_code == 3) && finite && !status.empty(); }
+};
+std::vector<StabilityOutcome> stability_cases(const std::string& source_dir, const std::string& binary);
+
 struct NamedCase {
   std::string id;
   std::function<CaseResult()> run;

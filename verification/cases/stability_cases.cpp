@@ -1,0 +1,116 @@
+#include <fmt/format.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cases.hpp"
+
+namespace vorodec::verification {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Variant {
+  std::string name, change;
+  std::vector<std::pair<std::string, std::string>> edits;  // replace first occurrence
+  long max_steps;
+};
+
+std::string slurp(const fs::path& f) {
+  std::ifstream in(f);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::string field(const std::string& json, const std::string& key) {
+  const std::string tag = "\"" + key + "\": ";
+  const auto p = json.find(tag);
+  if (p == std::string::npos) return {};
+  const auto b = p + tag.size();
+  if (json[b] == '"') return json.substr(b + 1, json.find('"', b + 1) - b - 1);
+  return json.substr(b, json.find_first_of(",\n}", b) - b);
+}
+
+bool history_finite(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');)
+      if (cell.find("nan") != std::string::npos || cell.find("inf") != std::string::npos) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<StabilityOutcome> stability_cases(const std::string& source_dir, const std::string& binary) {
+  const std::vector<Variant> variants{
+      {"stiff joints", "jkn and jks x 1e4 (the time step follows)",
+       {{"jkn = 1.8e13", "jkn = 1.8e17"}, {"jks = 7.3e12", "jks = 7.3e16"}, {"time_step = 1e-6", "time_step = 0"}},
+       3000},
+      {"stiffness contrast 1e6", "jkn Weibull with shape 0.3 (ratios beyond 1e6 between contacts)",
+       {{"jkn = 1.8e13", "jkn = { weibull_shape = 0.3, mean = 1.8e13 }"}, {"time_step = 1e-6", "time_step = 0"}},
+       3000},
+      {"Weibull m = 1", "strengths with shape 1 (extreme heterogeneity)",
+       {{"weibull_shape = 4.0, mean = 14e6", "weibull_shape = 1.0, mean = 14e6"},
+        {"weibull_shape = 4.0, mean = 24e6", "weibull_shape = 1.0, mean = 24e6"}},
+       40000},
+      {"Weibull m = 50", "strengths with shape 50 (nearly uniform)",
+       {{"weibull_shape = 4.0, mean = 14e6", "weibull_shape = 50.0, mean = 14e6"},
+        {"weibull_shape = 4.0, mean = 24e6", "weibull_shape = 50.0, mean = 24e6"}},
+       40000},
+      {"impact 50 m/s", "platen at 50 m/s, no ramp, no density scaling",
+       {{"platen_velocity = 0.02", "platen_velocity = 50.0"}, {"ramp_time = 2e-4", "ramp_time = 0"},
+        {"time_step = 1e-6", "time_step = 0"}},
+       20000},
+      {"confinement 200 MPa", "confining stress 200 MPa",
+       {{"[[stage]]", "[loading]\nconfining_stress = 200e6\n\n[[stage]]"}}, 20000},
+      {"no damping", "local damping 0 for the whole run",
+       {{"local_damping = 0.8", "local_damping = 0.0"}}, 40000},
+      {"falls apart", "no tension or cohesion: every contact is frictional from the start",
+       {{"tension = { weibull_shape = 4.0, mean = 14e6 }", "tension = 0"},
+        {"cohesion = { weibull_shape = 4.0, mean = 24e6 }", "cohesion = 0"}},
+       40000},
+  };
+  const fs::path model = fs::path(source_dir) / "tests/models/e2e_small.toml";
+  const fs::path dir = fs::temp_directory_path() / ("vorodec_stability_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::vector<StabilityOutcome> out;
+  std::size_t index = 0;
+  for (const Variant& v : variants) {
+    std::string text = slurp(model);
+    for (const auto& [from, to] : v.edits) {
+      const auto p = text.find(from);
+      if (p != std::string::npos) text.replace(p, from.size(), to);
+    }
+    const fs::path file = dir / fmt::format("case{}.toml", index++);
+    std::ofstream(file) << text;
+    const fs::path run_dir = dir / file.stem();
+    const auto t0 = std::chrono::steady_clock::now();
+    const int status = std::system(fmt::format("{} run {} --no-vtk --threads 1 --max-steps {} --out {} > {}.log 2>&1",
+                                               binary, file.string(), v.max_steps, run_dir.string(),
+                                               run_dir.string())
+                                       .c_str());
+    StabilityOutcome o;
+    o.name = v.name;
+    o.change = v.change;
+    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::string summary = slurp(run_dir / "summary.json");
+    o.status = field(summary, "status");
+    o.steps = std::atol(field(summary, "steps").c_str());
+    o.finite = history_finite(run_dir / "history.csv");
+    out.push_back(o);
+  }
+  return out;
+}
+
+}  // namespace vorodec::verification
