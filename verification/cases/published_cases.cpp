@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "cases.hpp"
 
@@ -53,6 +55,28 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
     r.push_back(c);
   };
   add("UCS (Pa)", 47.89e6, json_number(s.text, "peak_stress_Pa"), 0.05);
+  {
+    // Energy balance at the end of the run (PHYSICS section 10): boundary work against strain +
+    // kinetic + damping + friction + breakage, from the last history row.
+    std::ifstream hist(out / "history.csv");
+    std::string line, last;
+    while (std::getline(hist, line)) last = line;
+    std::vector<double> v;
+    for (std::size_t p = 0; p < last.size();) {
+      const auto q = last.find(',', p);
+      v.push_back(std::strtod(last.substr(p, q - p).c_str(), nullptr));
+      p = q == std::string::npos ? last.size() : q + 1;
+    }
+    CaseResult e{"B1", "energy balance at the end of the run (imbalance / boundary work)",
+                 "boundary work = contact strain + kinetic + damping + friction + breakage", 0, 0, 0,
+                 0.01, settings, s.seconds};
+    e.error = 1.0;
+    if (v.size() >= 15 && v[9] != 0) {
+      e.measured = (v[9] - (v[10] + v[11] + v[12] + v[13] + v[14])) / v[9];
+      e.error = std::abs(e.measured);
+    }
+    r.push_back(e);
+  }
   add("Young's modulus at 50 % of peak (Pa)", 29.22e9, json_number(s.text, "youngs_modulus_Pa"), 0.05);
   add("Poisson's ratio", 0.225, json_number(s.text, "poisson_ratio"), 0.05);
 
