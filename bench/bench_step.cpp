@@ -42,18 +42,21 @@ void run_steps(benchmark::State& state, const io::ModelConfig& cfg) {
   }
   const double threads = static_cast<double>(state.range(1));
   state.counters["contacts"] = static_cast<double>(pm.model->contacts.size());
-  state.counters["cu/s"] = benchmark::Counter(static_cast<double>(updates), benchmark::Counter::kIsRate);
+  state.counters["cu/s"] =
+      benchmark::Counter(static_cast<double>(updates), benchmark::Counter::kIsRate);
   state.counters["cu/s/core"] =
       benchmark::Counter(static_cast<double>(updates) / threads, benchmark::Counter::kIsRate);
-  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                 benchmark::Counter::kIsRate);
+  state.counters["steps/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["law_bytes/contact"] =
       static_cast<double>(pm.solver->laws()[0]->bytes_per_contact() + sizeof(model::Contact) +
                           sizeof(model::ContactForce) + 2 * sizeof(std::uint32_t));
 }
 
 void BM_DefaultModelStep(benchmark::State& state) { run_steps(state, default_model()); }
-void BM_ScaledStep(benchmark::State& state) { run_steps(state, scaled_model(static_cast<int>(state.range(0)))); }
+void BM_ScaledStep(benchmark::State& state) {
+  run_steps(state, scaled_model(static_cast<int>(state.range(0))));
+}
 
 }  // namespace
 

@@ -24,12 +24,15 @@ namespace {
 const fs::path model = fs::path(VORODEC_SOURCE_DIR) / "tests/models/e2e_small.toml";
 
 int vorodec(const std::string& args) {
-  const int status = std::system((std::string(VORODEC_BINARY) + " " + args + " > /dev/null 2>&1").c_str());
+  const int status =
+      std::system((std::string(VORODEC_BINARY) + " " + args + " > /dev/null 2>&1").c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // One folder per process: ctest runs each test as its own process, several at a time.
-fs::path base_dir() { return fs::temp_directory_path() / ("vorodec_e2e_" + std::to_string(getpid())); }
+fs::path base_dir() {
+  return fs::temp_directory_path() / ("vorodec_e2e_" + std::to_string(getpid()));
+}
 
 fs::path out_dir(const std::string& name) {
   const fs::path d = base_dir() / name;
@@ -88,7 +91,7 @@ TEST_F(EndToEnd, RunReachesPostPeakAndWritesEveryOutput) {
   const auto rows = read_csv(out / "history.csv");
   const double peak = peak_of(rows);
   EXPECT_GT(peak, 5e6);
-  EXPECT_LT(rows.back()[3], 0.6 * peak);  // ended after the peak, by its end condition
+  EXPECT_LT(rows.back()[3], 0.6 * peak);           // ended after the peak, by its end condition
   EXPECT_GT(rows.back()[6] + rows.back()[7], 10);  // cracks formed
   const std::string summary = slurp(out / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"finished\""), std::string::npos) << summary;
@@ -136,23 +139,25 @@ TEST_F(EndToEnd, PreparedSpecimenReproducesTheRunBitForBit) {
   ASSERT_TRUE(fs::exists(built / "specimen.vsp"));
   std::string text = slurp(model);
   const auto from = text.find("[specimen]"), to = text.find("[blocks]");
-  text.replace(from, to - from, "[specimen]\nfile = \"" + (built / "specimen.vsp").string() + "\"\n\n");
+  text.replace(from, to - from,
+               "[specimen]\nfile = \"" + (built / "specimen.vsp").string() + "\"\n\n");
   const fs::path reload_model = built / "reload.toml";
   std::ofstream(reload_model) << text;
   const fs::path again = out_dir("again");
-  ASSERT_EQ(vorodec("run " + reload_model.string() + " --threads 1 --no-vtk --out " + again.string()), 0);
+  ASSERT_EQ(
+      vorodec("run " + reload_model.string() + " --threads 1 --no-vtk --out " + again.string()), 0);
   const auto a = read_csv(base_dir() / "one/history.csv");
   const auto b = read_csv(again / "history.csv");
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "row " << i;
 }
 
-// Regression against tests/reference/e2e_small_history.csv (regenerate: tests/regenerate_reference.sh).
-// All builds agree bit for bit (-ffp-contract=off), but a change that only reorders floating-point
-// operations moves this dynamic, density-scaled curve by up to ~2e-4 of the peak before the first
-// crack (measured when the corner data were repacked), and crack order is chaotic after it. So the
-// pre-crack curve is held to 1e-3 of the peak and the peak to 3 %: physics changes show, round-off
-// does not.
+// Regression against tests/reference/e2e_small_history.csv (regenerate:
+// tests/regenerate_reference.sh). All builds agree bit for bit (-ffp-contract=off), but a change
+// that only reorders floating-point operations moves this dynamic, density-scaled curve by up to
+// ~2e-4 of the peak before the first crack (measured when the corner data were repacked), and crack
+// order is chaotic after it. So the pre-crack curve is held to 1e-3 of the peak and the peak to 3
+// %: physics changes show, round-off does not.
 TEST_F(EndToEnd, StressStrainMatchesCommittedReference) {
   ASSERT_EQ(run_code_, 0);
   const auto ref = read_csv(fs::path(VORODEC_SOURCE_DIR) / "tests/reference/e2e_small_history.csv");

@@ -25,7 +25,8 @@ TEST(RigidBlocks, ContactForcesSumToZeroOverAllBlocks) {
   model::add_block(m, verification::square(0, a, a), rho, Group::specimen);
   model::add_block(m, verification::square(a, a, a), rho, Group::specimen);
   solver::SolverSettings s;
-  auto solver = verification::make_solver(m, "linear_elastic", verification::params({{"jkn", 1e10}, {"jks", 5e9}}), s);
+  auto solver = verification::make_solver(m, "linear_elastic",
+                                          verification::params({{"jkn", 1e10}, {"jks", 5e9}}), s);
   m.blocks.vx[0] = 0.01;
   m.blocks.omega[3] = 2.0;
   m.blocks.vy[2] = -0.02;

@@ -13,8 +13,12 @@ void expect_pass(const CaseResult& r) {
 }  // namespace
 
 TEST(Verification, A1PolygonMassPropertiesAreExact) { expect_pass(a1_mass_properties()); }
-TEST(Verification, A2BlockAreasSumToOutlineAndAreReproducible) { expect_pass(a2_tessellation_area()); }
-TEST(Verification, A3BondedPairOscillatesWithTwoMassPeriod) { expect_pass(a3_bonded_pair_period()); }
+TEST(Verification, A2BlockAreasSumToOutlineAndAreReproducible) {
+  expect_pass(a2_tessellation_area());
+}
+TEST(Verification, A3BondedPairOscillatesWithTwoMassPeriod) {
+  expect_pass(a3_bonded_pair_period());
+}
 TEST(Verification, A3UndampedEnergyDoesNotDrift) { expect_pass(a3_bonded_pair_energy_drift()); }
 TEST(Verification, A4BlockSticksBelowFrictionAngle) { expect_pass(a4_incline(20)); }
 TEST(Verification, A4BlockSlidesWithCoulombAcceleration) {

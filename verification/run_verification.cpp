@@ -15,7 +15,8 @@ using namespace vorodec::verification;
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr, "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only]\n",
+                 argv[0]);
     return 2;
   }
   const bool analytic_only = argc > 4 && std::string(argv[4]) == "--analytic-only";
@@ -41,21 +42,25 @@ int main(int argc, char** argv) {
                      sysconf(_SC_NPROCESSORS_ONLN), analytic_only ? " (analytic cases only)" : "")
       << "Error is relative to the reference unless the case says otherwise (A1 and A7: the\n"
          "statistic itself; A3 drift: relative energy change; A4 sticking: displacement in m).\n\n"
-      << "| case | check | reference | expected | result | error | tolerance | pass | wall time | settings |\n"
+      << "| case | check | reference | expected | result | error | tolerance | pass | wall time | "
+         "settings |\n"
       << "|---|---|---|---|---|---|---|---|---|---|\n";
   int failed = 0;
   for (const auto& r : results) {
     failed += !r.pass();
-    out << fmt::format("| {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {:.3g} | {} | {:.2f} s | {} |\n",
-                       r.id, r.name, r.reference, r.expected, r.measured, r.error, r.tolerance,
-                       r.pass() ? "yes" : "**no**", r.seconds, r.settings);
+    out << fmt::format(
+        "| {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {:.3g} | {} | {:.2f} s | {} |\n", r.id, r.name,
+        r.reference, r.expected, r.measured, r.error, r.tolerance, r.pass() ? "yes" : "**no**",
+        r.seconds, r.settings);
   }
   out << fmt::format("\n{} of {} checks pass.\n", results.size() - static_cast<std::size_t>(failed),
                      results.size());
-  out << "\n## Stiff and extreme cases\n\nEach is `tests/models/e2e_small.toml` with one change, run "
+  out << "\n## Stiff and extreme cases\n\nEach is `tests/models/e2e_small.toml` with one change, "
+         "run "
          "for at most the steps shown. It must finish or stop with a clear message (exit code 3), "
          "never produce NaN, crash or hang.\n\n"
-      << "| case | change | exit code | outcome | steps | history finite | wall time | acceptable |\n"
+      << "| case | change | exit code | outcome | steps | history finite | wall time | acceptable "
+         "|\n"
       << "|---|---|---|---|---|---|---|---|\n";
   for (const auto& o : stability_cases(argv[1], argv[2])) {
     failed += !o.acceptable();

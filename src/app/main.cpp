@@ -57,8 +57,10 @@ int main(int argc, char** argv) {
   auto* run = cli.add_subcommand("run", "run a model file to the end of its load path");
   run->add_option("model", model_path, "model file (.toml)")->required();
   run->add_option("--out", out_dir, "results folder (default: results/<model name>)");
-  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
-  run->add_option("--max-steps", max_steps, "stop after this many steps (short runs)")->check(CLI::PositiveNumber);
+  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--max-steps", max_steps, "stop after this many steps (short runs)")
+      ->check(CLI::PositiveNumber);
   run->add_flag("--no-vtk", no_vtk, "do not write the VTK series");
 
   auto* check = cli.add_subcommand("check", "validate a model file and its specimen, run nothing");
@@ -102,12 +104,12 @@ int main(int argc, char** argv) {
     }
     app::RunOptions options{out, max_steps, !no_vtk, true};
     const app::RunSummary s = app::run_model(cfg, specimen, options);
-    fmt::print("{}: {} after {} steps in {:.1f} s; peak stress {:.2f} MPa, E {:.2f} GPa, nu {:.3f}; "
-               "cracks {} tensile, {} shear\nresults in {}/ (history.csv, summary.json, cracks.csv, "
-               "vtk/*.pvd)\n",
-               model_path, s.status, s.steps, s.wall_seconds, s.peak_stress / 1e6,
-               s.youngs_modulus / 1e9, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
-               out.string());
+    fmt::print(
+        "{}: {} after {} steps in {:.1f} s; peak stress {:.2f} MPa, E {:.2f} GPa, nu {:.3f}; "
+        "cracks {} tensile, {} shear\nresults in {}/ (history.csv, summary.json, cracks.csv, "
+        "vtk/*.pvd)\n",
+        model_path, s.status, s.steps, s.wall_seconds, s.peak_stress / 1e6, s.youngs_modulus / 1e9,
+        s.poisson_ratio, s.cracks_tensile, s.cracks_shear, out.string());
     return s.exit_code;
   } catch (const io::ModelFileError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -101,8 +101,8 @@ io::VtkFrame make_frame(const model::Model& m, const solver::Solver& solver) {
 }
 
 void write_cracks(const std::filesystem::path& file, const std::vector<laws::CrackEvent>& cracks) {
-  const std::vector<std::string> header{"time", "x", "y", "orientation_deg", "length", "block_a",
-                                        "block_b", "type"};
+  const std::vector<std::string> header{"time",   "x",       "y",       "orientation_deg",
+                                        "length", "block_a", "block_b", "type"};
   io::CsvWriter csv(file, header);
   for (const auto& e : cracks) {
     // Orientation of the crack (joint) line, 0-180 degrees from the x axis.
@@ -158,10 +158,22 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   const loading::SpecimenBoundary boundary(model);
   const double sigma3 = cfg.load_path.confining_stress;
 
-  const std::vector<std::string> header{
-      "step", "time", "axial_strain", "axial_stress", "lateral_strain", "volumetric_strain",
-      "cracks_tensile", "cracks_shear", "failure_rate", "boundary_work", "strain_energy",
-      "kinetic_energy", "damping_energy", "friction_energy", "breakage_energy", "stage"};
+  const std::vector<std::string> header{"step",
+                                        "time",
+                                        "axial_strain",
+                                        "axial_stress",
+                                        "lateral_strain",
+                                        "volumetric_strain",
+                                        "cracks_tensile",
+                                        "cracks_shear",
+                                        "failure_rate",
+                                        "boundary_work",
+                                        "strain_energy",
+                                        "kinetic_energy",
+                                        "damping_energy",
+                                        "friction_energy",
+                                        "breakage_energy",
+                                        "stage"};
   io::CsvWriter history(options.out / "history.csv", header);
   std::unique_ptr<io::VtkSeriesWriter> vtk;
   if (options.write_vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options.out / "vtk");
@@ -178,12 +190,22 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
     count_cracks();
     const auto& e = solver.energy();
     const double broken = double(n_tensile + n_shear);
-    const double row[] = {double(solver.steps()), solver.time(), state.axial_strain,
-                          state.axial_stress, state.lateral_strain, state.volumetric_strain,
-                          double(n_tensile), double(n_shear),
-                          solver.initial_bonded_contacts() ? broken / double(solver.initial_bonded_contacts()) : 0.0,
-                          e.boundary_work, solver.contact_strain_energy(), solver.kinetic_energy(),
-                          e.damping, e.slip, e.breakage};
+    const double row[] = {
+        double(solver.steps()),
+        solver.time(),
+        state.axial_strain,
+        state.axial_stress,
+        state.lateral_strain,
+        state.volumetric_strain,
+        double(n_tensile),
+        double(n_shear),
+        solver.initial_bonded_contacts() ? broken / double(solver.initial_bonded_contacts()) : 0.0,
+        e.boundary_work,
+        solver.contact_strain_energy(),
+        solver.kinetic_energy(),
+        e.damping,
+        e.slip,
+        e.breakage};
     history.row(row, stage);
     h_strain.push_back(state.axial_strain);
     h_stress.push_back(state.axial_stress);
@@ -217,7 +239,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
           v = ts < st.ramp_time ? v0 + (st.platen_velocity - v0) * ts / st.ramp_time
                                 : st.platen_velocity;
         } else {  // servo on the top platen (PFC wall servo, gain 0.8 / (K dt))
-          const double k = solver.contact_stiffness_on(static_cast<std::size_t>(boundary.top_platen()));
+          const double k =
+              solver.contact_stiffness_on(static_cast<std::size_t>(boundary.top_platen()));
           const double df = (st.target_stress - state.axial_stress) * boundary.width();
           v = k > 0 ? 0.8 * df / (k * solver.dt()) : st.platen_velocity;
           v = std::clamp(v, -st.platen_velocity, st.platen_velocity);
@@ -234,7 +257,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         }
         peak = std::max(peak, state.axial_stress);
         if (solver.steps() % cfg.output.history_steps == 0) record(st.name);
-        if (vtk && solver.steps() % cfg.output.vtk_steps == 0) vtk->write(make_frame(model, solver));
+        if (vtk && solver.steps() % cfg.output.vtk_steps == 0)
+          vtk->write(make_frame(model, solver));
         // End conditions.
         const auto& end = st.end;
         double fraction = 0.0;
@@ -246,7 +270,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
                             : state.axial_strain <= end.axial_strain;
         }
         if (!std::isnan(end.post_peak_fraction) && solver.steps() % cfg.output.history_steps == 0) {
-          // Judged on history rows: the peak must lie three rows back, so start-up noise is no peak.
+          // Judged on history rows: the peak must lie three rows back, so start-up noise is no
+          // peak.
           if (state.axial_stress > row_peak) {
             row_peak = state.axial_stress;
             rows_since_peak = 0;
@@ -254,13 +279,15 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
             ++rows_since_peak;
           }
           if (row_peak > 0 && rows_since_peak >= 3) {
-            const double drop = (1.0 - state.axial_stress / row_peak) / (1.0 - end.post_peak_fraction);
+            const double drop =
+                (1.0 - state.axial_stress / row_peak) / (1.0 - end.post_peak_fraction);
             fraction = std::max(fraction, std::clamp(drop, 0.0, 1.0));
             done |= state.axial_stress < end.post_peak_fraction * row_peak;
           }
         }
         if (!std::isnan(end.stress)) {
-          const bool near = std::abs(state.axial_stress - end.stress) <= 0.01 * std::max(end.stress, 1e5);
+          const bool near =
+              std::abs(state.axial_stress - end.stress) <= 0.01 * std::max(end.stress, 1e5);
           held = near ? held + 1 : 0;
           if (std::isnan(end.duration)) done |= held >= 200;
         }

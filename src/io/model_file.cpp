@@ -15,10 +15,10 @@ bool in_range(const laws::ParamSpec& spec, double v) {
 }
 
 std::string range_text(const laws::ParamSpec& spec) {
-  return spec.max < 1e299 ? fmt::format("{} {} and <= {} {}", spec.min_inclusive ? ">=" : ">",
-                                        spec.min, spec.max, spec.unit)
-                          : fmt::format("{} {} {}", spec.min_inclusive ? ">=" : ">", spec.min,
-                                        spec.unit);
+  return spec.max < 1e299
+             ? fmt::format("{} {} and <= {} {}", spec.min_inclusive ? ">=" : ">", spec.min,
+                           spec.max, spec.unit)
+             : fmt::format("{} {} {}", spec.min_inclusive ? ">=" : ">", spec.min, spec.unit);
 }
 
 // A law property: a number, or { weibull_shape = m, mean = a0 } / { weibull_shape = m, scale = l }.
@@ -39,7 +39,8 @@ model::Distribution read_property(TomlSection& sec, const laws::ParamSpec& spec)
                     : model::Distribution::weibull_from_scale(m, a);
   }
   const double v = sec.number(spec.key, laws::required);
-  if (!in_range(spec, v)) sec.fail(spec.key, fmt::format("must be {} (got {})", range_text(spec), v));
+  if (!in_range(spec, v))
+    sec.fail(spec.key, fmt::format("must be {} (got {})", range_text(spec), v));
   return model::Distribution::constant(v);
 }
 
@@ -57,10 +58,11 @@ LawChoice read_law(TomlSection& sec, const std::string& default_law) {
     if (sec.has(spec.key)) {
       choice.params.emplace(std::string(spec.key), read_property(sec, spec));
     } else if (!std::isnan(spec.default_value)) {
-      choice.params.emplace(std::string(spec.key), model::Distribution::constant(spec.default_value));
+      choice.params.emplace(std::string(spec.key),
+                            model::Distribution::constant(spec.default_value));
     } else if (!spec.optional) {
-      sec.fail(spec.key, fmt::format("required by law '{}' ({}, {})", choice.name, spec.doc,
-                                     spec.unit));
+      sec.fail(spec.key,
+               fmt::format("required by law '{}' ({}, {})", choice.name, spec.doc, spec.unit));
     }
   }
   return choice;
@@ -113,8 +115,8 @@ loading::Stage read_stage(TomlSection sec, std::size_t index) {
     st.target_stress = sec.non_negative("target_stress", laws::required);
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
   } else {
-    sec.fail("control", fmt::format("must be \"platen_velocity\" or \"axial_stress\" (got \"{}\")",
-                                    control));
+    sec.fail("control",
+             fmt::format("must be \"platen_velocity\" or \"axial_stress\" (got \"{}\")", control));
   }
   st.ramp_time = sec.non_negative("ramp_time", 0.0);
   const double nan = loading::StageEnd::unset;
@@ -127,8 +129,9 @@ loading::Stage read_stage(TomlSection sec, std::size_t index) {
   st.end.duration = sec.has("end_time") ? sec.positive("end_time", nan) : nan;
   if (std::isnan(st.end.axial_strain) && std::isnan(st.end.post_peak_fraction) &&
       std::isnan(st.end.duration) && st.control == loading::Control::platen_velocity)
-    sec.fail("end_axial_strain",
-             "a stage needs an end condition: end_axial_strain, end_post_peak_fraction or end_time");
+    sec.fail(
+        "end_axial_strain",
+        "a stage needs an end condition: end_axial_strain, end_post_peak_fraction or end_time");
   if (st.control == loading::Control::axial_stress) st.end.stress = st.target_stress;
   sec.finish();
   return st;
@@ -169,8 +172,7 @@ ModelConfig read_model_file(const std::filesystem::path& file) {
   if (top.has("platens")) {
     TomlSection p = top.sub("platens");
     cfg.platens.params["jkn"] = model::Distribution::constant(p.positive("jkn", jkn_mean));
-    cfg.platens.params["friction"] =
-        model::Distribution::constant(p.non_negative("friction", 0.0));
+    cfg.platens.params["friction"] = model::Distribution::constant(p.non_negative("friction", 0.0));
     if (cfg.platens.params["friction"].value >= 90) p.fail("friction", "must be < 90 deg");
     p.finish();
   } else {

@@ -47,7 +47,8 @@ geometry::Tessellation read_specimen(const std::filesystem::path& file) {
     }
     return false;
   };
-  if (!next() || line != magic) fail(fmt::format("not a vorodec specimen file (expected '{}')", magic));
+  if (!next() || line != magic)
+    fail(fmt::format("not a vorodec specimen file (expected '{}')", magic));
   geometry::Tessellation t;
   std::size_t n = 0;
   if (!next() || std::sscanf(line.c_str(), "vertices %zu", &n) != 1) fail("expected 'vertices N'");

@@ -6,8 +6,8 @@ namespace vorodec::laws {
 
 namespace {
 constexpr ParamSpec linear_elastic_params[] = {
-    {"jkn", "Pa/m", "joint normal stiffness per unit contact length", 0, false, 1e300, required, true,
-     false},
+    {"jkn", "Pa/m", "joint normal stiffness per unit contact length", 0, false, 1e300, required,
+     true, false},
     {"jks", "Pa/m", "joint shear stiffness per unit contact length", 0, true, 1e300, required, true,
      false},
 };
@@ -16,8 +16,7 @@ constexpr ParamSpec linear_elastic_params[] = {
 extern const LawInfo linear_elastic_info;
 const LawInfo linear_elastic_info{
     LinearElastic::name, "linear normal and shear springs without strength (never fail)",
-    linear_elastic_params,
-    [](const LawParams& p, std::uint64_t seed) -> std::unique_ptr<LawGroup> {
+    linear_elastic_params, [](const LawParams& p, std::uint64_t seed) -> std::unique_ptr<LawGroup> {
       return std::make_unique<LawGroupOf<LinearElastic>>(p, seed);
     }};
 

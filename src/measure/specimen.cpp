@@ -39,9 +39,8 @@ SpecimenState measure_specimen(const model::Model& model, const loading::Specime
     s.axial_stress = (solver.contact_force(t).y - solver.contact_force(b).y) /
                      (2.0 * boundary.width() * model.thickness);
   }
-  s.lateral_strain =
-      -(mean_dx(bl, boundary.right_gauges()) - mean_dx(bl, boundary.left_gauges())) /
-      boundary.width();
+  s.lateral_strain = -(mean_dx(bl, boundary.right_gauges()) - mean_dx(bl, boundary.left_gauges())) /
+                     boundary.width();
   s.volumetric_strain = s.axial_strain + s.lateral_strain;
   return s;
 }

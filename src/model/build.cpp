@@ -77,9 +77,10 @@ void Blocks::refresh_world() {
     cos_t[b] = c;
     sin_t[b] = s;
     for (std::uint32_t k = corner_begin[b]; k < corner_begin[b + 1]; ++k) {
-      world[k] = {{x[b] + c * corner[k].x - s * corner[k].y, y[b] + s * corner[k].x + c * corner[k].y},
-                  {x[b] + c * round_centre[k].x - s * round_centre[k].y,
-                   y[b] + s * round_centre[k].x + c * round_centre[k].y}};
+      world[k] = {
+          {x[b] + c * corner[k].x - s * corner[k].y, y[b] + s * corner[k].x + c * corner[k].y},
+          {x[b] + c * round_centre[k].x - s * round_centre[k].y,
+           y[b] + s * round_centre[k].x + c * round_centre[k].y}};
     }
     kin[b] = {x[b], y[b], vx[b], vy[b], omega[b]};
   }
@@ -102,12 +103,17 @@ Model build_model(const geometry::Tessellation& tess, const BuildSettings& setti
     add_block(model, poly, settings.density, Group::specimen);
   }
   if (settings.platens) {
-    // Platens overhang the specimen by half its width; their mass never enters (velocity prescribed).
+    // Platens overhang the specimen by half its width; their mass never enters (velocity
+    // prescribed).
     const double w = xmax - xmin, t = 0.25 * w;
-    const Point bottom[] = {{xmin - 0.5 * w, ymin - t}, {xmax + 0.5 * w, ymin - t},
-                            {xmax + 0.5 * w, ymin}, {xmin - 0.5 * w, ymin}};
-    const Point top[] = {{xmin - 0.5 * w, ymax}, {xmax + 0.5 * w, ymax},
-                         {xmax + 0.5 * w, ymax + t}, {xmin - 0.5 * w, ymax + t}};
+    const Point bottom[] = {{xmin - 0.5 * w, ymin - t},
+                            {xmax + 0.5 * w, ymin - t},
+                            {xmax + 0.5 * w, ymin},
+                            {xmin - 0.5 * w, ymin}};
+    const Point top[] = {{xmin - 0.5 * w, ymax},
+                         {xmax + 0.5 * w, ymax},
+                         {xmax + 0.5 * w, ymax + t},
+                         {xmin - 0.5 * w, ymax + t}};
     add_block(model, bottom, settings.density, Group::bottom_platen);
     add_block(model, top, settings.density, Group::top_platen);
   }

@@ -14,7 +14,8 @@ std::uint64_t mix(std::uint64_t z) {
 }  // namespace
 
 double keyed_uniform(std::uint64_t seed, std::uint64_t contact_id, std::uint32_t property) {
-  const std::uint64_t h = mix(mix(mix(seed) ^ contact_id) ^ (std::uint64_t{property} << 32 | property));
+  const std::uint64_t h =
+      mix(mix(mix(seed) ^ contact_id) ^ (std::uint64_t{property} << 32 | property));
   // 53 random bits, shifted by half a unit so the result is never 0 or 1.
   return (static_cast<double>(h >> 11) + 0.5) * 0x1.0p-53;
 }

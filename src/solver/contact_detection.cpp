@@ -31,8 +31,8 @@ Box world_box(const Blocks& bl, std::uint32_t b, double margin) {
 }
 
 // Nearest feature of block b to corner `corner` of block a; the frame's edge is returned in `edge`.
-ContactFrame nearest_feature(const Blocks& bl, std::uint32_t corner,
-                             std::uint32_t b, std::uint32_t& edge) {
+ContactFrame nearest_feature(const Blocks& bl, std::uint32_t corner, std::uint32_t b,
+                             std::uint32_t& edge) {
   const Point cA = bl.world[corner].centre;
   const double rA = bl.shape[corner].radius;
   ContactFrame best{};
@@ -51,9 +51,9 @@ ContactFrame nearest_feature(const Blocks& bl, std::uint32_t corner,
     }
     if (h <= 0) continue;
     outside = true;
-    const ContactFrame f = model::corner_edge_frame(cA, rA, v0, v1, bl.world[e0].centre,
-                                                    bl.shape[e0].radius, bl.world[e1].centre,
-                                                    bl.shape[e1].radius);
+    const ContactFrame f =
+        model::corner_edge_frame(cA, rA, v0, v1, bl.world[e0].centre, bl.shape[e0].radius,
+                                 bl.world[e1].centre, bl.shape[e1].radius);
     if (f.gap < best.gap) {
       best = f;
       edge = e0;
@@ -96,8 +96,8 @@ bool key_less(const Contact& x, const Contact& y) {
 }
 
 // Lengths of new contacts from the spacing of all contacts between the same two blocks: each
-// contact represents the joint up to halfway to its neighbours, plus the rounding length at the ends
-// (so an intact shared edge gives each end contact half its length, as in UDEC).
+// contact represents the joint up to halfway to its neighbours, plus the rounding length at the
+// ends (so an intact shared edge gives each end contact half its length, as in UDEC).
 void assign_lengths(std::vector<Candidate>& pair_contacts, double d) {
   const std::size_t k = pair_contacts.size();
   if (k == 1) {  // a corner pressing on a face: half a typical edge (d is 5 % of the mean edge)
@@ -197,8 +197,8 @@ DetectionStats ContactDetector::detect(model::Model& model,
   std::sort(old_order.begin(), old_order.end(), pair_less);
 
   DetectionStats stats;
-  std::vector<Candidate> result;           // contacts of the new list, with their points
-  std::vector<std::int64_t> origin;        // old index, or -1
+  std::vector<Candidate> result;     // contacts of the new list, with their points
+  std::vector<std::int64_t> origin;  // old index, or -1
   std::vector<Candidate> pair_list, fresh;
   std::vector<std::int64_t> pair_origin;
   std::size_t old_pos = 0;

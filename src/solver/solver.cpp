@@ -114,9 +114,10 @@ void Solver::step() {
         steps_ - last_detection_ >= settings_.max_detection_interval)
       detect(false);
   }
-  laws::StepContext ctx{&bl, model_.contacts.data(), forces_.data(), &cracks_per_thread_, dt_,
-                        time_, {}};
-  for (std::size_t l = 0; l < laws_.size(); ++l) laws_[l]->step(ctx, law_begin_[l], law_begin_[l + 1]);
+  laws::StepContext ctx{
+      &bl, model_.contacts.data(), forces_.data(), &cracks_per_thread_, dt_, time_, {}};
+  for (std::size_t l = 0; l < laws_.size(); ++l)
+    laws_[l]->step(ctx, law_begin_[l], law_begin_[l + 1]);
   energy_.slip += ctx.totals.dissipated_slip;
   energy_.breakage += ctx.totals.dissipated_breakage;
   for (auto& list : cracks_per_thread_) {  // thread order = contact order: deterministic
@@ -220,9 +221,9 @@ void Solver::check_stability() const {
   const auto& bl = model_.blocks;
   for (std::size_t b = 0; b < bl.size(); ++b) {
     if (!std::isfinite(bl.x[b] + bl.y[b] + bl.theta[b] + bl.vx[b] + bl.vy[b] + bl.omega[b]))
-      throw InstabilityError(fmt::format(
-          "block {} has a non-finite position or velocity at step {} (t = {:.6g} s)", b, steps_,
-          time_));
+      throw InstabilityError(
+          fmt::format("block {} has a non-finite position or velocity at step {} (t = {:.6g} s)", b,
+                      steps_, time_));
   }
   const double limit = 0.5 * model_.rounding_length;
   for (const auto& c : model_.contacts) {

@@ -56,42 +56,41 @@ CaseResult a1_mass_properties() {
                    const auto m = model::mass_properties(p);
                    const double t = 2 * std::numbers::pi / n;
                    const double area = 0.5 * n * rad * rad * std::sin(t);
-                   worst = std::max({worst, rel(m.area, area),
-                                     rel(m.polar_moment, area * rad * rad * (2 + std::cos(t)) / 6)});
+                   worst =
+                       std::max({worst, rel(m.area, area),
+                                 rel(m.polar_moment, area * rad * rad * (2 + std::cos(t)) / 6)});
                  }
                  r.error = r.measured = worst;
                });
 }
 
 CaseResult a2_tessellation_area() {
-  return timed({"A2", "sum of block areas = outline area (1302 blocks, 2 Lloyd, collapse 0.25 mm)",
-                "exact outline area 5000 mm^2; same seed -> identical blocks", 5e-3, 0, 0, 1e-9,
-                "seed 42"},
-               [](CaseResult& r) {
-                 geometry::TessellationSettings s;
-                 s.outline = {geometry::OutlineKind::rectangle, 0.05, 0.1, 0, 0};
-                 s.block_count = 1302;
-                 s.seed = 42;
-                 s.lloyd_iterations = 2;
-                 s.min_edge_length = 2.5e-4;
-                 const auto t = geometry::tessellate(s);
-                 double area = 0;
-                 std::vector<model::Point> p;
-                 for (const auto& b : t.blocks) {
-                   p.clear();
-                   for (auto v : b) p.push_back(t.vertices[v]);
-                   area += model::mass_properties(p).area;
-                 }
-                 r.measured = area;
-                 r.error = rel(area, r.expected);
-                 const auto again = geometry::tessellate(s);
-                 const bool same = again.blocks == t.blocks &&
-                                   std::equal(t.vertices.begin(), t.vertices.end(),
-                                              again.vertices.begin(), [](auto x, auto y) {
-                                                return x.x == y.x && x.y == y.y;
-                                              });
-                 if (!same) r.error = 1.0;  // reproducibility is part of the case
-               });
+  return timed(
+      {"A2", "sum of block areas = outline area (1302 blocks, 2 Lloyd, collapse 0.25 mm)",
+       "exact outline area 5000 mm^2; same seed -> identical blocks", 5e-3, 0, 0, 1e-9, "seed 42"},
+      [](CaseResult& r) {
+        geometry::TessellationSettings s;
+        s.outline = {geometry::OutlineKind::rectangle, 0.05, 0.1, 0, 0};
+        s.block_count = 1302;
+        s.seed = 42;
+        s.lloyd_iterations = 2;
+        s.min_edge_length = 2.5e-4;
+        const auto t = geometry::tessellate(s);
+        double area = 0;
+        std::vector<model::Point> p;
+        for (const auto& b : t.blocks) {
+          p.clear();
+          for (auto v : b) p.push_back(t.vertices[v]);
+          area += model::mass_properties(p).area;
+        }
+        r.measured = area;
+        r.error = rel(area, r.expected);
+        const auto again = geometry::tessellate(s);
+        const bool same = again.blocks == t.blocks &&
+                          std::equal(t.vertices.begin(), t.vertices.end(), again.vertices.begin(),
+                                     [](auto x, auto y) { return x.x == y.x && x.y == y.y; });
+        if (!same) r.error = 1.0;  // reproducibility is part of the case
+      });
 }
 
 namespace {
@@ -148,17 +147,21 @@ CaseResult a3_bonded_pair_period() {
 }
 
 CaseResult a3_bonded_pair_energy_drift() {
-  return timed({"A3", "bonded pair: energy drift over 100 periods", "kinetic + strain energy constant",
-                0, 0, 0, 1e-4, "safety factor 0.1, no damping"},
+  return timed({"A3", "bonded pair: energy drift over 100 periods",
+                "kinetic + strain energy constant", 0, 0, 0, 1e-4, "safety factor 0.1, no damping"},
                [](CaseResult& r) { r.error = r.measured = bonded_pair().energy_drift; });
 }
 
 CaseResult a4_incline(double angle_deg) {
   const double phi = 30.0, g = 9.81, theta = angle_deg * std::numbers::pi / 180;
   const double expected = g * (std::sin(theta) - std::cos(theta) * tand(phi));
-  CaseResult r{"A4", "block on a " + std::to_string(int(angle_deg)) + " deg incline, friction 30 deg",
+  CaseResult r{"A4",
+               "block on a " + std::to_string(int(angle_deg)) + " deg incline, friction 30 deg",
                expected > 0 ? "a = g (sin theta - cos theta tan phi)" : "sticks: theta < phi",
-               std::max(expected, 0.0), 0, 0, expected > 0 ? 0.01 : 1e-6,
+               std::max(expected, 0.0),
+               0,
+               0,
+               expected > 0 ? 0.01 : 1e-6,
                expected > 0 ? "undamped, safety factor 0.2" : "damping 0.8 (judged at rest)"};
   return timed(r, [&](CaseResult& c) {
     model::Model m;
@@ -171,8 +174,12 @@ CaseResult a4_incline(double angle_deg) {
     s.safety_factor = 0.2;
     s.gravity = {g * std::sin(theta), -g * std::cos(theta)};
     auto solver = make_solver(m, "mohr_coulomb",
-                              params({{"jkn", 1e11}, {"jks", 1e11}, {"friction", phi},
-                                      {"tension", 0}, {"cohesion", 0}, {"dilation", 0},
+                              params({{"jkn", 1e11},
+                                      {"jks", 1e11},
+                                      {"friction", phi},
+                                      {"tension", 0},
+                                      {"cohesion", 0},
+                                      {"dilation", 0},
                                       {"residual_friction", phi}}),
                               s);
     while (solver->time() < 0.02) solver->step();
@@ -245,17 +252,18 @@ CaseResult a5_dilation() {
 }
 
 CaseResult a6_direct_tension() {
-  return timed({"A6", "direct tension of a bonded joint", "breaks at T L", 14e6 * L, 0, 0, 0.01,
-                "normal increments 1e-10 m"},
-               [](CaseResult& r) {
-                 const auto p = marble_joint(0.0);
-                 laws::MohrCoulomb::State st{0.0, 0.0, false};
-                 for (int i = 1; i < 1000000 && !st.broken; ++i) {
-                   const auto res = laws::MohrCoulomb::evaluate({i * 1e-10, 1e-10, 0.0, L, 1e-7}, p, st);
-                   if (!st.broken) r.measured = std::max(r.measured, -res.fn);
-                 }
-                 r.error = st.broken ? rel(r.measured, r.expected) : 1.0;
-               });
+  return timed(
+      {"A6", "direct tension of a bonded joint", "breaks at T L", 14e6 * L, 0, 0, 0.01,
+       "normal increments 1e-10 m"},
+      [](CaseResult& r) {
+        const auto p = marble_joint(0.0);
+        laws::MohrCoulomb::State st{0.0, 0.0, false};
+        for (int i = 1; i < 1000000 && !st.broken; ++i) {
+          const auto res = laws::MohrCoulomb::evaluate({i * 1e-10, 1e-10, 0.0, L, 1e-7}, p, st);
+          if (!st.broken) r.measured = std::max(r.measured, -res.fn);
+        }
+        r.error = st.broken ? rel(r.measured, r.expected) : 1.0;
+      });
 }
 
 namespace {
@@ -268,20 +276,21 @@ std::vector<double> weibull_samples(double shape, double mean) {
 }  // namespace
 
 CaseResult a7_weibull_ks() {
-  return timed({"A7", "Weibull sampling (m = 3, N = 1e5): Kolmogorov-Smirnov D",
-                "CDF 1 - exp(-(a/lam)^m), lam = a0 / Gamma(1 + 1/m); p > 0.01 <=> D < 1.628/sqrt(N)",
-                0, 0, 0, 1.628 / std::sqrt(1e5), "counter-based stream"},
-               [](CaseResult& r) {
-                 auto x = weibull_samples(3.0, 24.24e6);
-                 std::sort(x.begin(), x.end());
-                 const double lam = 24.24e6 / std::tgamma(1.0 + 1.0 / 3.0), n = double(x.size());
-                 double dmax = 0;
-                 for (std::size_t i = 0; i < x.size(); ++i) {
-                   const double f = 1.0 - std::exp(-std::pow(x[i] / lam, 3.0));
-                   dmax = std::max({dmax, f - double(i) / n, double(i + 1) / n - f});
-                 }
-                 r.error = r.measured = dmax;
-               });
+  return timed(
+      {"A7", "Weibull sampling (m = 3, N = 1e5): Kolmogorov-Smirnov D",
+       "CDF 1 - exp(-(a/lam)^m), lam = a0 / Gamma(1 + 1/m); p > 0.01 <=> D < 1.628/sqrt(N)", 0, 0,
+       0, 1.628 / std::sqrt(1e5), "counter-based stream"},
+      [](CaseResult& r) {
+        auto x = weibull_samples(3.0, 24.24e6);
+        std::sort(x.begin(), x.end());
+        const double lam = 24.24e6 / std::tgamma(1.0 + 1.0 / 3.0), n = double(x.size());
+        double dmax = 0;
+        for (std::size_t i = 0; i < x.size(); ++i) {
+          const double f = 1.0 - std::exp(-std::pow(x[i] / lam, 3.0));
+          dmax = std::max({dmax, f - double(i) / n, double(i + 1) / n - f});
+        }
+        r.error = r.measured = dmax;
+      });
 }
 
 CaseResult a7_weibull_mean() {
@@ -298,38 +307,39 @@ CaseResult a7_weibull_mean() {
 
 CaseResult a8_local_damping() {
   const double alpha = 0.1;
-  return timed({"A8", "one block on a spring, local damping alpha = 0.1: amplitude ratio per cycle",
-                "sqrt(energy ratio) = (1 - alpha)/(1 + alpha)", (1 - alpha) / (1 + alpha), 0, 0,
-                0.02, "safety factor 0.05; worst of 5 cycles"},
-               [&](CaseResult& r) {
-                 model::Model m;
-                 m.rounding_length = 0.01 * a;
-                 model::add_block(m, square(0, a, a), rho, Group::specimen);
-                 model::add_block(m, square(0, 0, a), rho, Group::bottom_platen);
-                 solver::SolverSettings s;
-                 s.local_damping = alpha;
-                 s.safety_factor = 0.05;
-                 auto solver = make_solver(m, "linear_elastic", params({{"jkn", 1e10}, {"jks", 1e10}}), s);
-                 m.blocks.vy[0] = 0.01;
-                 const double y0 = m.blocks.y[0];
-                 std::vector<double> peaks;
-                 double u2 = 0, u1 = 0;
-                 while (peaks.size() < 6 && solver->steps() < 1000000) {
-                   solver->step();
-                   const double u = m.blocks.y[0] - y0;
-                   if (u1 > u2 && u1 >= u && u1 > 0) peaks.push_back(u1);
-                   u2 = u1;
-                   u1 = u;
-                 }
-                 r.error = peaks.size() < 6 ? 1.0 : 0.0;
-                 for (std::size_t i = 1; i < peaks.size(); ++i) {
-                   const double e = rel(peaks[i] / peaks[i - 1], r.expected);
-                   if (e >= r.error) {
-                     r.error = e;
-                     r.measured = peaks[i] / peaks[i - 1];
-                   }
-                 }
-               });
+  return timed(
+      {"A8", "one block on a spring, local damping alpha = 0.1: amplitude ratio per cycle",
+       "sqrt(energy ratio) = (1 - alpha)/(1 + alpha)", (1 - alpha) / (1 + alpha), 0, 0, 0.02,
+       "safety factor 0.05; worst of 5 cycles"},
+      [&](CaseResult& r) {
+        model::Model m;
+        m.rounding_length = 0.01 * a;
+        model::add_block(m, square(0, a, a), rho, Group::specimen);
+        model::add_block(m, square(0, 0, a), rho, Group::bottom_platen);
+        solver::SolverSettings s;
+        s.local_damping = alpha;
+        s.safety_factor = 0.05;
+        auto solver = make_solver(m, "linear_elastic", params({{"jkn", 1e10}, {"jks", 1e10}}), s);
+        m.blocks.vy[0] = 0.01;
+        const double y0 = m.blocks.y[0];
+        std::vector<double> peaks;
+        double u2 = 0, u1 = 0;
+        while (peaks.size() < 6 && solver->steps() < 1000000) {
+          solver->step();
+          const double u = m.blocks.y[0] - y0;
+          if (u1 > u2 && u1 >= u && u1 > 0) peaks.push_back(u1);
+          u2 = u1;
+          u1 = u;
+        }
+        r.error = peaks.size() < 6 ? 1.0 : 0.0;
+        for (std::size_t i = 1; i < peaks.size(); ++i) {
+          const double e = rel(peaks[i] / peaks[i - 1], r.expected);
+          if (e >= r.error) {
+            r.error = e;
+            r.measured = peaks[i] / peaks[i - 1];
+          }
+        }
+      });
 }
 
 std::vector<NamedCase> analytic_cases() {

@@ -13,10 +13,10 @@ struct CaseResult {
   std::string reference;  // formula or source
   double expected = 0;    // reference value
   double measured = 0;
-  double error = 0;       // relative error |measured - expected| / |expected| (or as stated)
-  double tolerance = 0;   // on `error`
-  std::string settings;   // discretisation used
-  double seconds = 0;     // wall time
+  double error = 0;      // relative error |measured - expected| / |expected| (or as stated)
+  double tolerance = 0;  // on `error`
+  std::string settings;  // discretisation used
+  double seconds = 0;    // wall time
   bool pass() const { return error <= tolerance; }
 };
 
@@ -41,15 +41,18 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
 // produce NaN, crash or hang.
 struct StabilityOutcome {
   std::string name;
-  std::string change;   // what the case changes in tests/models/e2e_small.toml
+  std::string change;  // what the case changes in tests/models/e2e_small.toml
   int exit_code = -1;
   std::string status;   // summary.json status
   bool finite = false;  // every history value finite
   long steps = 0;
   double seconds = 0;
-  bool acceptable() const { return (exit_code == 0 || exit_code == 3) && finite && !status.empty(); }
+  bool acceptable() const {
+    return (exit_code == 0 || exit_code == 3) && finite && !status.empty();
+  }
 };
-std::vector<StabilityOutcome> stability_cases(const std::string& source_dir, const std::string& binary);
+std::vector<StabilityOutcome> stability_cases(const std::string& source_dir,
+                                              const std::string& binary);
 
 struct NamedCase {
   std::string id;

@@ -18,7 +18,8 @@ namespace {
 double json_number(const std::string& text, const std::string& key) {
   const std::string tag = "\"" + key + "\": ";
   const auto pos = text.find(tag);
-  return pos == std::string::npos ? std::nan("") : std::strtod(text.c_str() + pos + tag.size(), nullptr);
+  return pos == std::string::npos ? std::nan("")
+                                  : std::strtod(text.c_str() + pos + tag.size(), nullptr);
 }
 
 struct Summary {
@@ -49,8 +50,9 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
   const std::string settings = "models/ucs_marble.toml: 1302 blocks, 5e-3 m/s, time_step 5e-7 s";
   std::vector<CaseResult> r;
   const auto add = [&](std::string name, double expected, double measured, double tol) {
-    CaseResult c{"B1", std::move(name), paper, expected, measured,
-                 std::abs(measured - expected) / expected, tol, settings, s.seconds};
+    CaseResult c{"B1",     std::move(name), paper,
+                 expected, measured,        std::abs(measured - expected) / expected,
+                 tol,      settings,        s.seconds};
     if (std::isnan(measured)) c.error = 1.0;
     r.push_back(c);
   };
@@ -67,9 +69,15 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
       v.push_back(std::strtod(last.substr(p, q - p).c_str(), nullptr));
       p = q == std::string::npos ? last.size() : q + 1;
     }
-    CaseResult e{"B1", "energy balance at the end of the run (imbalance / boundary work)",
-                 "boundary work = contact strain + kinetic + damping + friction + breakage", 0, 0, 0,
-                 0.01, settings, s.seconds};
+    CaseResult e{"B1",
+                 "energy balance at the end of the run (imbalance / boundary work)",
+                 "boundary work = contact strain + kinetic + damping + friction + breakage",
+                 0,
+                 0,
+                 0,
+                 0.01,
+                 settings,
+                 s.seconds};
     e.error = 1.0;
     if (v.size() >= 15 && v[9] != 0) {
       e.measured = (v[9] - (v[10] + v[11] + v[12] + v[13] + v[14])) / v[9];
@@ -77,7 +85,8 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
     }
     r.push_back(e);
   }
-  add("Young's modulus at 50 % of peak (Pa)", 29.22e9, json_number(s.text, "youngs_modulus_Pa"), 0.05);
+  add("Young's modulus at 50 % of peak (Pa)", 29.22e9, json_number(s.text, "youngs_modulus_Pa"),
+      0.05);
   add("Poisson's ratio", 0.225, json_number(s.text, "poisson_ratio"), 0.05);
 
   // The loading rate must not decide the UCS: the same model at half the platen speed.
@@ -89,10 +98,15 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
   const auto half = out.parent_path() / "b1_half_rate.toml";
   std::ofstream(half) << text;
   const Summary h = run_model(binary, half, out.parent_path() / "b1_half");
-  CaseResult c{"B1", "UCS at 5e-3 m/s against UCS at 2.5e-3 m/s",
+  CaseResult c{"B1",
+               "UCS at 5e-3 m/s against UCS at 2.5e-3 m/s",
                "converged-rate reference: the same model at half the loading rate",
-               json_number(h.text, "peak_stress_Pa"), json_number(s.text, "peak_stress_Pa"), 0,
-               0.02, "half rate: 2.5e-3 m/s", h.seconds};
+               json_number(h.text, "peak_stress_Pa"),
+               json_number(s.text, "peak_stress_Pa"),
+               0,
+               0.02,
+               "half rate: 2.5e-3 m/s",
+               h.seconds};
   c.error = std::abs(c.measured - c.expected) / c.expected;
   if (std::isnan(c.error)) c.error = 1.0;
   r.push_back(c);

@@ -44,44 +44,61 @@ bool history_finite(const fs::path& csv) {
   while (std::getline(in, line)) {
     std::stringstream ss(line);
     for (std::string cell; std::getline(ss, cell, ',');)
-      if (cell.find("nan") != std::string::npos || cell.find("inf") != std::string::npos) return false;
+      if (cell.find("nan") != std::string::npos || cell.find("inf") != std::string::npos)
+        return false;
   }
   return true;
 }
 
 }  // namespace
 
-std::vector<StabilityOutcome> stability_cases(const std::string& source_dir, const std::string& binary) {
+std::vector<StabilityOutcome> stability_cases(const std::string& source_dir,
+                                              const std::string& binary) {
   const std::vector<Variant> variants{
-      {"stiff joints", "jkn and jks x 1e4 (the time step follows)",
-       {{"jkn = 1.8e13", "jkn = 1.8e17"}, {"jks = 7.3e12", "jks = 7.3e16"}, {"time_step = 1e-6", "time_step = 0"}},
+      {"stiff joints",
+       "jkn and jks x 1e4 (the time step follows)",
+       {{"jkn = 1.8e13", "jkn = 1.8e17"},
+        {"jks = 7.3e12", "jks = 7.3e16"},
+        {"time_step = 1e-6", "time_step = 0"}},
        3000},
-      {"stiffness contrast 1e6", "jkn Weibull with shape 0.3 (ratios beyond 1e6 between contacts)",
-       {{"jkn = 1.8e13", "jkn = { weibull_shape = 0.3, mean = 1.8e13 }"}, {"time_step = 1e-6", "time_step = 0"}},
+      {"stiffness contrast 1e6",
+       "jkn Weibull with shape 0.3 (ratios beyond 1e6 between contacts)",
+       {{"jkn = 1.8e13", "jkn = { weibull_shape = 0.3, mean = 1.8e13 }"},
+        {"time_step = 1e-6", "time_step = 0"}},
        3000},
-      {"Weibull m = 1", "strengths with shape 1 (extreme heterogeneity)",
+      {"Weibull m = 1",
+       "strengths with shape 1 (extreme heterogeneity)",
        {{"weibull_shape = 4.0, mean = 14e6", "weibull_shape = 1.0, mean = 14e6"},
         {"weibull_shape = 4.0, mean = 24e6", "weibull_shape = 1.0, mean = 24e6"}},
        40000},
-      {"Weibull m = 50", "strengths with shape 50 (nearly uniform)",
+      {"Weibull m = 50",
+       "strengths with shape 50 (nearly uniform)",
        {{"weibull_shape = 4.0, mean = 14e6", "weibull_shape = 50.0, mean = 14e6"},
         {"weibull_shape = 4.0, mean = 24e6", "weibull_shape = 50.0, mean = 24e6"}},
        40000},
-      {"impact 50 m/s", "platen at 50 m/s, no ramp, no density scaling",
-       {{"platen_velocity = 0.02", "platen_velocity = 50.0"}, {"ramp_time = 2e-4", "ramp_time = 0"},
+      {"impact 50 m/s",
+       "platen at 50 m/s, no ramp, no density scaling",
+       {{"platen_velocity = 0.02", "platen_velocity = 50.0"},
+        {"ramp_time = 2e-4", "ramp_time = 0"},
         {"time_step = 1e-6", "time_step = 0"}},
        20000},
-      {"confinement 200 MPa", "confining stress 200 MPa",
-       {{"[[stage]]", "[loading]\nconfining_stress = 200e6\n\n[[stage]]"}}, 20000},
-      {"no damping", "local damping 0 for the whole run",
-       {{"local_damping = 0.8", "local_damping = 0.0"}}, 40000},
-      {"falls apart", "no tension or cohesion: every contact is frictional from the start",
+      {"confinement 200 MPa",
+       "confining stress 200 MPa",
+       {{"[[stage]]", "[loading]\nconfining_stress = 200e6\n\n[[stage]]"}},
+       20000},
+      {"no damping",
+       "local damping 0 for the whole run",
+       {{"local_damping = 0.8", "local_damping = 0.0"}},
+       40000},
+      {"falls apart",
+       "no tension or cohesion: every contact is frictional from the start",
        {{"tension = { weibull_shape = 4.0, mean = 14e6 }", "tension = 0"},
         {"cohesion = { weibull_shape = 4.0, mean = 24e6 }", "cohesion = 0"}},
        40000},
   };
   const fs::path model = fs::path(source_dir) / "tests/models/e2e_small.toml";
-  const fs::path dir = fs::temp_directory_path() / ("vorodec_stability_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("vorodec_stability_" + std::to_string(getpid()));
   fs::create_directories(dir);
   std::vector<StabilityOutcome> out;
   std::size_t index = 0;
@@ -95,10 +112,10 @@ std::vector<StabilityOutcome> stability_cases(const std::string& source_dir, con
     std::ofstream(file) << text;
     const fs::path run_dir = dir / file.stem();
     const auto t0 = std::chrono::steady_clock::now();
-    const int status = std::system(fmt::format("{} run {} --no-vtk --threads 1 --max-steps {} --out {} > {}.log 2>&1",
-                                               binary, file.string(), v.max_steps, run_dir.string(),
-                                               run_dir.string())
-                                       .c_str());
+    const int status = std::system(
+        fmt::format("{} run {} --no-vtk --threads 1 --max-steps {} --out {} > {}.log 2>&1", binary,
+                    file.string(), v.max_steps, run_dir.string(), run_dir.string())
+            .c_str());
     StabilityOutcome o;
     o.name = v.name;
     o.change = v.change;

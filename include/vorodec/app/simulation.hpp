@@ -25,7 +25,7 @@ struct RunOptions {
   std::filesystem::path out;  // results folder
   long max_steps = 0;         // > 0: stop after this many steps (short mode)
   bool write_vtk = true;
-  bool progress = true;       // progress bar (terminal) or progress lines
+  bool progress = true;  // progress bar (terminal) or progress lines
 };
 
 struct RunSummary {

@@ -21,8 +21,9 @@ struct Outline {
 
 struct TessellationSettings {
   Outline outline;
-  double mean_edge_length = 0.0;  // m, target measured mean Voronoi edge length (0 = use block_count)
-  int block_count = 0;            // target number of blocks (0 = use mean_edge_length)
+  double mean_edge_length =
+      0.0;              // m, target measured mean Voronoi edge length (0 = use block_count)
+  int block_count = 0;  // target number of blocks (0 = use mean_edge_length)
   std::uint64_t seed = 1;
   int lloyd_iterations = 0;      // centroidal (Lloyd) relaxation sweeps
   double min_edge_length = 0.0;  // m, shorter edges are collapsed to a point
@@ -36,7 +37,7 @@ struct SpecimenReport {
   double area_min = 0, area_mean = 0, area_max = 0;  // m^2
   double smallest_angle_deg = 0;                     // smallest interior angle of any block
   std::size_t edges_collapsed = 0;
-  double outline_area = 0;  // m^2, of the (polygonal) outline
+  double outline_area = 0;            // m^2, of the (polygonal) outline
   std::vector<std::string> warnings;  // one line per alteration or suspicious feature
 };
 

@@ -19,11 +19,14 @@ struct VtkFrame {
   std::vector<std::int32_t> block_id, block_group;
   std::vector<geometry::Point> block_velocity;      // m/s
   std::vector<geometry::Point> block_displacement;  // m
-  // Contacts as line segments from block A's centroid to block B's centroid through the contact point.
-  std::vector<geometry::Point> contact_point;  // m
+  // Contacts as line segments from block A's centroid to block B's centroid through the contact
+  // point.
+  std::vector<geometry::Point> contact_point;         // m
   std::vector<geometry::Point> contact_a, contact_b;  // centroids of the two blocks, m
-  std::vector<double> contact_normal_force, contact_shear_force;  // N (per m thickness), compression +
-  std::vector<std::int32_t> contact_state;  // ContactState as int: 0 intact, 1 slipping, 2 tensile, 3 shear
+  std::vector<double> contact_normal_force,
+      contact_shear_force;  // N (per m thickness), compression +
+  std::vector<std::int32_t>
+      contact_state;  // ContactState as int: 0 intact, 1 slipping, 2 tensile, 3 shear
   // Cracks (failed contacts) as segments centred on the failure point.
   std::vector<geometry::Point> crack_begin, crack_end;
   std::vector<std::int32_t> crack_type;  // 1 tensile, 2 shear

@@ -37,12 +37,12 @@ struct LawResult {
 
 // A crack: a contact that failed, recorded once at the intact -> failed transition.
 struct CrackEvent {
-  double time;         // s
-  double x, y;         // m, contact point
-  double nx, ny;       // contact normal
-  double length;       // m
-  std::int32_t a, b;   // blocks
-  ContactEvent type;   // tensile_failure or shear_failure
+  double time;        // s
+  double x, y;        // m, contact point
+  double nx, ny;      // contact normal
+  double length;      // m
+  std::int32_t a, b;  // blocks
+  ContactEvent type;  // tensile_failure or shear_failure
 };
 
 // Per-step outputs that are reduced over contacts.
@@ -53,8 +53,8 @@ struct ContactTotals {
 
 struct StepContext {
   model::Blocks* blocks;
-  model::Contact* contacts;      // whole contact array
-  model::ContactForce* forces;   // whole force array
+  model::Contact* contacts;     // whole contact array
+  model::ContactForce* forces;  // whole force array
   std::vector<std::vector<CrackEvent>>* cracks_per_thread;
   double dt;    // s
   double time;  // s
@@ -95,9 +95,10 @@ struct ParamSpec {
   std::string_view key;
   std::string_view unit;
   std::string_view doc;
-  double min;  // the value (or a distribution's mean / scale) must be > min, or >= min if min_inclusive
+  double min;  // the value (or a distribution's mean / scale) must be > min, or >= min if
+               // min_inclusive
   bool min_inclusive;
-  double max;  // and <= max
+  double max;            // and <= max
   double default_value;  // NaN: required unless optional
   bool distributable;    // may be Weibull distributed per contact
   bool optional;         // may be absent with no default (the law derives it)

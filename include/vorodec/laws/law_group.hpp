@@ -35,7 +35,8 @@ class LawGroupOf final : public LawGroup {
   }
   std::span<const std::string_view> property_names() const override { return Law::property_names; }
 
-  void rebuild(std::span<const std::int64_t> old_of_new, std::span<const NewContact> fresh) override {
+  void rebuild(std::span<const std::int64_t> old_of_new,
+               std::span<const NewContact> fresh) override {
     std::vector<typename Law::Props> props(old_of_new.size());
     std::vector<typename Law::State> state(old_of_new.size());
     for (std::size_t i = 0; i < old_of_new.size(); ++i) {
@@ -70,8 +71,10 @@ class LawGroupOf final : public LawGroup {
         const model::BlockKinematics& ka = bl.kin[static_cast<std::size_t>(c.a)];
         const model::BlockKinematics& kb = bl.kin[static_cast<std::size_t>(c.b)];
         // Relative velocity of a with respect to b at the contact point.
-        const double vrx = (ka.vx - ka.omega * (f.point.y - ka.y)) - (kb.vx - kb.omega * (f.point.y - kb.y));
-        const double vry = (ka.vy + ka.omega * (f.point.x - ka.x)) - (kb.vy + kb.omega * (f.point.x - kb.x));
+        const double vrx =
+            (ka.vx - ka.omega * (f.point.y - ka.y)) - (kb.vx - kb.omega * (f.point.y - kb.y));
+        const double vry =
+            (ka.vy + ka.omega * (f.point.x - ka.x)) - (kb.vy + kb.omega * (f.point.x - kb.x));
         const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
         const double fn0 = c.fn, fs0 = c.fs;
         const LawResult r = Law::evaluate(k, props[i - begin], state[i - begin]);
@@ -91,7 +94,8 @@ class LawGroupOf final : public LawGroup {
           breakage += dissipated;
           c.state = r.event == ContactEvent::tensile_failure ? model::ContactState::tensile_failed
                                                              : model::ContactState::shear_failed;
-          cracks.push_back({ctx.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
+          cracks.push_back(
+              {ctx.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
         } else {
           slip += dissipated;
           if (c.state <= model::ContactState::slipping)

@@ -23,8 +23,8 @@ struct MohrCoulomb {
     double tan_phi, tan_phi_res, tan_psi;
   };
   static constexpr std::array<std::string_view, 7> property_names{
-      "kn [N/m]", "ks [N/m]", "tension_force [N]", "cohesion_force [N]", "tan_phi", "tan_phi_res",
-      "tan_psi"};
+      "kn [N/m]",    "ks [N/m]", "tension_force [N]", "cohesion_force [N]", "tan_phi",
+      "tan_phi_res", "tan_psi"};
   struct State {
     double fs;     // N, shear force carried into the next step
     double u_dil;  // m, dilation opening

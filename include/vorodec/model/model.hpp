@@ -14,11 +14,11 @@ enum class Group : std::int32_t { specimen = 0, bottom_platen = 1, top_platen = 
 
 // Constants of a corner's rounded arc and of the block edge that starts at the corner.
 struct CornerShape {
-  double radius;      // m, arc radius
-  double inv_length;  // 1/m, of the edge
-  double s0, s1;      // m, where the edge's straight part (between the end arcs' tangent points)
-                      // begins and ends along it
-  std::uint32_t next; // index of the next corner of the same block
+  double radius;       // m, arc radius
+  double inv_length;   // 1/m, of the edge
+  double s0, s1;       // m, where the edge's straight part (between the end arcs' tangent points)
+                       // begins and ends along it
+  std::uint32_t next;  // index of the next corner of the same block
 };
 
 struct CornerWorld {
@@ -34,13 +34,15 @@ struct Blocks {
   std::vector<double> x, y, theta;    // centroid (m) and rotation (rad)
   std::vector<double> x0, y0;         // initial centroid (m)
   std::vector<double> vx, vy, omega;  // m/s, rad/s, at the half step
-  std::vector<double> mass, inertia;  // inertial values (kg, kg m^2 per m), density scaling may raise them
-  std::vector<double> gravity_mass;   // true mass for body forces (kg per m)
-  std::vector<double> true_inertia;   // true polar moment of inertia (kg m^2 per m)
-  std::vector<double> fx, fy, moment; // applied boundary loads of the current step (N, N m)
+  std::vector<double> mass,
+      inertia;  // inertial values (kg, kg m^2 per m), density scaling may raise them
+  std::vector<double> gravity_mass;    // true mass for body forces (kg per m)
+  std::vector<double> true_inertia;    // true polar moment of inertia (kg m^2 per m)
+  std::vector<double> fx, fy, moment;  // applied boundary loads of the current step (N, N m)
   std::vector<Group> group;
   std::vector<std::uint8_t> prescribed;  // 1: velocity set by the load path, not integrated
-  // Shape, in the block's own frame (relative to the centroid at theta = 0), corners counter-clockwise.
+  // Shape, in the block's own frame (relative to the centroid at theta = 0), corners
+  // counter-clockwise.
   std::vector<std::uint32_t> corner_begin;  // size blocks + 1
   std::vector<Point> corner;                // unrounded corner
   std::vector<Point> round_centre;          // centre of the rounded corner's arc
@@ -64,22 +66,27 @@ struct Blocks {
   }
 };
 
-enum class ContactState : std::uint8_t { intact = 0, slipping = 1, tensile_failed = 2, shear_failed = 3 };
+enum class ContactState : std::uint8_t {
+  intact = 0,
+  slipping = 1,
+  tensile_failed = 2,
+  shear_failed = 3
+};
 
 // A rounded corner of block a against block b's edge starting at corner `edge` (or, past the edge's
 // straight part, against that edge's end corner). The normal points from b to a.
 struct Contact {
   std::int32_t a = 0, b = 0;
-  std::uint32_t corner = 0;  // global corner index of a
-  std::uint32_t edge = 0;    // global corner index where b's edge starts
-  std::uint64_t id = 0;      // stable id: keys the random stream of sampled properties
-  double length = 0.0;       // m, joint length this contact represents
-  double gap = 0.0;          // m, current gap (negative = overlap)
-  double u_s = 0.0;          // m, accumulated shear displacement
-  double fn = 0.0, fs = 0.0; // N per m thickness, normal force positive in compression
-  std::uint16_t law = 0;     // index of the contact law group that owns it
+  std::uint32_t corner = 0;   // global corner index of a
+  std::uint32_t edge = 0;     // global corner index where b's edge starts
+  std::uint64_t id = 0;       // stable id: keys the random stream of sampled properties
+  double length = 0.0;        // m, joint length this contact represents
+  double gap = 0.0;           // m, current gap (negative = overlap)
+  double u_s = 0.0;           // m, accumulated shear displacement
+  double fn = 0.0, fs = 0.0;  // N per m thickness, normal force positive in compression
+  std::uint16_t law = 0;      // index of the contact law group that owns it
   ContactState state = ContactState::intact;
-  std::uint8_t bonded = 0;   // 1: part of the initial tessellation (cohesive until it fails)
+  std::uint8_t bonded = 0;  // 1: part of the initial tessellation (cohesive until it fails)
 };
 
 // Force of one contact on block a, applied at point (px, py); block b receives the opposite.

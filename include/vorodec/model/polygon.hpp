@@ -7,8 +7,8 @@
 namespace vorodec::model {
 
 struct MassProperties {
-  double area = 0.0;        // m^2
-  geometry::Point centroid;  // m
+  double area = 0.0;          // m^2
+  geometry::Point centroid;   // m
   double polar_moment = 0.0;  // m^4, polar second moment of area about the centroid
 };
 

@@ -12,11 +12,11 @@
 namespace vorodec::solver {
 
 struct SolverSettings {
-  double local_damping = 0.8;        // Cundall alpha
-  double safety_factor = 0.8;        // fraction of the critical time step
-  double time_step = 0.0;            // s; > 0: density scaling to reach this step (quasi-static only)
-  model::Point gravity{0.0, 0.0};    // m/s^2
-  double contact_tolerance = 0.0;    // m, create within / delete beyond this gap
+  double local_damping = 0.8;      // Cundall alpha
+  double safety_factor = 0.8;      // fraction of the critical time step
+  double time_step = 0.0;          // s; > 0: density scaling to reach this step (quasi-static only)
+  model::Point gravity{0.0, 0.0};  // m/s^2
+  double contact_tolerance = 0.0;  // m, create within / delete beyond this gap
   int max_detection_interval = 200;  // steps between detections at most
 };
 
@@ -74,8 +74,8 @@ class Solver {
   ContactDetector detector_;
   SolverSettings settings_;
   std::vector<model::ContactForce> forces_;
-  std::vector<std::uint32_t> gather_begin_, gather_;  // block -> contacts (top bit: block is b)
-  std::vector<double> cfx_, cfy_, cm_;                // contact force sums per block
+  std::vector<std::uint32_t> gather_begin_, gather_;    // block -> contacts (top bit: block is b)
+  std::vector<double> cfx_, cfy_, cm_;                  // contact force sums per block
   std::vector<double> x_detect_, y_detect_, t_detect_;  // positions at the last detection
   std::vector<std::vector<laws::CrackEvent>> cracks_per_thread_;
   std::vector<laws::CrackEvent> cracks_;
