@@ -34,8 +34,8 @@ struct Blocks {
   std::vector<double> x, y, theta;    // centroid (m) and rotation (rad)
   std::vector<double> x0, y0;         // initial centroid (m)
   std::vector<double> vx, vy, omega;  // m/s, rad/s, at the half step
-  std::vector<double> mass,
-      inertia;  // inertial values (kg, kg m^2 per m), density scaling may raise them
+  // Inertial mass and polar moment (kg, kg m^2 per m); density scaling may raise them.
+  std::vector<double> mass, inertia;
   std::vector<double> gravity_mass;    // true mass for body forces (kg per m)
   std::vector<double> true_inertia;    // true polar moment of inertia (kg m^2 per m)
   std::vector<double> fx, fy, moment;  // applied boundary loads of the current step (N, N m)
