@@ -79,10 +79,17 @@ rm -f "$png"
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
 start=$(date +%s.%N)
-PYTHONPATH="${pythonpath}${PYTHONPATH:+:$PYTHONPATH}" \
-  xvfb-run -a -s "-screen 0 1280x1024x24" \
-  pvbatch "$here/paraview_check.py" "$pvd" "$png" "${array[@]}" >"$log" 2>&1
-rc=$?
+# xvfb-run -a can race another X server for a display number under load ("bad X server
+# connection"); that is the machine, not the series: retry a few times.
+for attempt in 1 2 3; do
+  PYTHONPATH="${pythonpath}${PYTHONPATH:+:$PYTHONPATH}" \
+    xvfb-run -a -s "-screen 0 1280x1024x24" \
+    pvbatch "$here/paraview_check.py" "$pvd" "$png" "${array[@]}" >"$log" 2>&1
+  rc=$?
+  grep -q "bad X server connection" "$log" || break
+  echo "run_paraview_check: X server not reachable (attempt $attempt), retrying" >&2
+  sleep 2
+done
 end=$(date +%s.%N)
 cat "$log"
 # pvbatch has been known to exit 0 after a Python error: also require the script's own OK line.
