@@ -53,7 +53,9 @@ void run_steps(benchmark::State& state, const io::ModelConfig& cfg) {
                           sizeof(model::ContactForce) + 2 * sizeof(std::uint32_t));
 }
 
-void BM_DefaultModelStep(benchmark::State& state) { run_steps(state, default_model()); }
+void BM_DefaultModelStep(benchmark::State& state) {
+  run_steps(state, default_model());
+}
 void BM_ScaledStep(benchmark::State& state) {
   run_steps(state, scaled_model(static_cast<int>(state.range(0))));
 }

@@ -12,7 +12,9 @@ using namespace vorodec::laws;
 
 namespace {
 constexpr double L = 1e-3, jkn = 1e13, jks = 4e12;
-double tand(double deg) { return std::tan(deg * std::numbers::pi / 180.0); }
+double tand(double deg) {
+  return std::tan(deg * std::numbers::pi / 180.0);
+}
 
 MohrCoulomb::Props marble_joint(double dilation_deg) {
   return {jkn * L, jks * L, 14e6 * L, 24e6 * L, tand(25.5), tand(20.0), tand(dilation_deg)};

@@ -56,7 +56,9 @@ double total_area(const Tessellation& t) {
   return sum;
 }
 
-double distance(Point a, Point b) { return std::hypot(a.x - b.x, a.y - b.y); }
+double distance(Point a, Point b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
 
 using DirectedEdges = std::map<std::pair<std::uint32_t, std::uint32_t>, int>;
 
@@ -117,21 +119,28 @@ bool on_disc_outline(Point p, Point q, double tolerance) {
 }
 
 // Every directed edge is matched by its reverse exactly once, or lies on the outline.
-void expect_watertight(const Tessellation& t, bool is_disc) {
+// Every edge is used once per direction; unmatched edges lie on the outline and the report's
+// edge counts agree.
+::testing::AssertionResult watertight(const Tessellation& t, bool is_disc) {
   const double tolerance = 1e-9 * kHeight;
   std::size_t boundary = 0;
   const DirectedEdges edges = directed_edges(t);
   for (const auto& [edge, count] : edges) {
-    ASSERT_EQ(count, 1) << "edge used twice in the same direction";
+    if (count != 1) return ::testing::AssertionFailure() << "edge used twice in the same direction";
     if (edges.count({edge.second, edge.first}) == 1) continue;
     ++boundary;
     const Point p = t.vertices[edge.first], q = t.vertices[edge.second];
-    EXPECT_TRUE(is_disc ? on_disc_outline(p, q, tolerance) : on_rectangle_side(p, q, tolerance))
-        << "unmatched edge not on the outline: (" << p.x << "," << p.y << ")-(" << q.x << "," << q.y
-        << ")";
+    if (!(is_disc ? on_disc_outline(p, q, tolerance) : on_rectangle_side(p, q, tolerance)))
+      return ::testing::AssertionFailure() << "unmatched edge not on the outline: (" << p.x << ","
+                                           << p.y << ")-(" << q.x << "," << q.y << ")";
   }
-  EXPECT_EQ(boundary, t.report.boundary_edges);
-  EXPECT_EQ((edges.size() - boundary) / 2, t.report.shared_edges);
+  if (boundary != t.report.boundary_edges)
+    return ::testing::AssertionFailure()
+           << boundary << " boundary edges, report says " << t.report.boundary_edges;
+  if ((edges.size() - boundary) / 2 != t.report.shared_edges)
+    return ::testing::AssertionFailure() << (edges.size() - boundary) / 2
+                                         << " shared edges, report says " << t.report.shared_edges;
+  return ::testing::AssertionSuccess();
 }
 
 // Largest turn to the right (radians) along a block; <= 0 for a convex CCW polygon.
@@ -186,12 +195,14 @@ TEST(Tessellation, DifferentSeedGivesDifferentResult) {
 
 TEST(Tessellation, InteriorEdgesSharedOppositelyAndBoundaryEdgesOnRectangle) {
   for (const std::uint64_t seed : {1, 2, 3}) {
-    expect_watertight(tessellate(rectangle(700, seed)), false);
+    EXPECT_TRUE(watertight(tessellate(rectangle(700, seed)), false)) << "seed " << seed;
   }
 }
 
 TEST(Tessellation, InteriorEdgesSharedOppositelyAndBoundaryEdgesOnDisc) {
-  for (const std::uint64_t seed : {1, 2}) expect_watertight(tessellate(disc(500, seed)), true);
+  for (const std::uint64_t seed : {1, 2}) {
+    EXPECT_TRUE(watertight(tessellate(disc(500, seed)), true)) << "seed " << seed;
+  }
 }
 
 TEST(Tessellation, DiscCornersAreVertices) {
@@ -226,7 +237,7 @@ TEST(Tessellation, ShortEdgesAreCollapsedAndTopologyStaysWatertight) {
   const bool warned = std::any_of(t.report.warnings.begin(), t.report.warnings.end(),
                                   [](const std::string& w) { return w.find("collapsed") == 0; });
   EXPECT_TRUE(warned);
-  expect_watertight(t, false);
+  EXPECT_TRUE(watertight(t, false));
   EXPECT_NEAR(total_area(t) / (kWidth * kHeight), 1.0, 1e-9);
   for (const Block& block : t.blocks) {
     EXPECT_GE(block.size(), 3U);

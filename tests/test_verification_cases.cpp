@@ -14,7 +14,9 @@ namespace {
 }
 }  // namespace
 
-TEST(Verification, A1PolygonMassPropertiesAreExact) { EXPECT_TRUE(passes(a1_mass_properties())); }
+TEST(Verification, A1PolygonMassPropertiesAreExact) {
+  EXPECT_TRUE(passes(a1_mass_properties()));
+}
 TEST(Verification, A2BlockAreasSumToOutlineAndAreReproducible) {
   EXPECT_TRUE(passes(a2_tessellation_area()));
 }
@@ -24,7 +26,9 @@ TEST(Verification, A3BondedPairOscillatesWithTwoMassPeriod) {
 TEST(Verification, A3UndampedEnergyDoesNotDrift) {
   EXPECT_TRUE(passes(a3_bonded_pair_energy_drift()));
 }
-TEST(Verification, A4BlockSticksBelowFrictionAngle) { EXPECT_TRUE(passes(a4_incline(20))); }
+TEST(Verification, A4BlockSticksBelowFrictionAngle) {
+  EXPECT_TRUE(passes(a4_incline(20)));
+}
 TEST(Verification, A4BlockSlidesWithCoulombAcceleration) {
   EXPECT_TRUE(passes(a4_incline(40)));
   EXPECT_TRUE(passes(a4_incline(50)));
@@ -35,12 +39,18 @@ TEST(Verification, A5ShearPeaksAtCohesionPlusFriction) {
 TEST(Verification, A5ShearDropsToResidualFriction) {
   EXPECT_TRUE(passes(a5_direct_shear_residual()));
 }
-TEST(Verification, A5DilationOpensBySlipTimesTanPsi) { EXPECT_TRUE(passes(a5_dilation())); }
+TEST(Verification, A5DilationOpensBySlipTimesTanPsi) {
+  EXPECT_TRUE(passes(a5_dilation()));
+}
 TEST(Verification, A6TensionBreaksAtStrengthTimesLength) {
   EXPECT_TRUE(passes(a6_direct_tension()));
 }
-TEST(Verification, A7WeibullSamplesFollowTheCdf) { EXPECT_TRUE(passes(a7_weibull_ks())); }
-TEST(Verification, A7WeibullMeanIsA0) { EXPECT_TRUE(passes(a7_weibull_mean())); }
+TEST(Verification, A7WeibullSamplesFollowTheCdf) {
+  EXPECT_TRUE(passes(a7_weibull_ks()));
+}
+TEST(Verification, A7WeibullMeanIsA0) {
+  EXPECT_TRUE(passes(a7_weibull_mean()));
+}
 TEST(Verification, A8LocalDampingRemovesAnalyticEnergyFraction) {
   EXPECT_TRUE(passes(a8_local_damping()));
 }

@@ -156,7 +156,9 @@ class VtkSeriesWriterTest : public ::testing::Test {
 fs::path VtkSeriesWriterTest::dir_;
 std::size_t VtkSeriesWriterTest::frames_ = 0;
 
-TEST_F(VtkSeriesWriterTest, CountsWrittenFrames) { EXPECT_EQ(frames_, 3u); }
+TEST_F(VtkSeriesWriterTest, CountsWrittenFrames) {
+  EXPECT_EQ(frames_, 3u);
+}
 
 TEST_F(VtkSeriesWriterTest, WritesSixDigitNumberedFilesPerSeriesAndFrame) {
   for (const char* series : {"blocks", "contacts", "cracks"}) {

@@ -175,7 +175,9 @@ void add_vertex_warnings(const std::vector<Point>& vertices, const Blocks& block
 
 }  // namespace
 
-double length(Point a, Point b) { return std::sqrt(dot(b - a, b - a)); }
+double length(Point a, Point b) {
+  return std::sqrt(dot(b - a, b - a));
+}
 
 std::vector<Edge> collect_edges(const Blocks& blocks) {
   // Packed (min, max) keys sort much faster than structs.

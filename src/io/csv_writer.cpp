@@ -28,6 +28,8 @@ void CsvWriter::row(std::span<const double> values, const std::string& last_text
   std::fprintf(f_, "%s\n", line_.c_str());
 }
 
-void CsvWriter::flush() { std::fflush(f_); }
+void CsvWriter::flush() {
+  std::fflush(f_);
+}
 
 }  // namespace vorodec::io

@@ -16,7 +16,9 @@ enum Property : std::uint32_t {
   dilation,
   residual_friction
 };
-double tan_deg(double deg) { return std::tan(deg * std::numbers::pi / 180.0); }
+double tan_deg(double deg) {
+  return std::tan(deg * std::numbers::pi / 180.0);
+}
 }  // namespace
 
 MohrCoulomb::Params MohrCoulomb::params_from(const LawParams& p) {

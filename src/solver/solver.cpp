@@ -15,7 +15,9 @@ using model::Point;
 
 namespace {
 constexpr std::uint32_t b_side = 0x80000000u;
-double sign(double v) { return (v > 0.0) - (v < 0.0); }
+double sign(double v) {
+  return (v > 0.0) - (v < 0.0);
+}
 }  // namespace
 
 Solver::Solver(model::Model& model, std::vector<std::unique_ptr<laws::LawGroup>> laws,

@@ -32,7 +32,9 @@ CaseResult timed(CaseResult r, F body) {
   return r;
 }
 
-double tand(double deg) { return std::tan(deg * std::numbers::pi / 180.0); }
+double tand(double deg) {
+  return std::tan(deg * std::numbers::pi / 180.0);
+}
 
 }  // namespace
 
