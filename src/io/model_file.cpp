@@ -183,18 +183,56 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
 
 }  // namespace
 
-ModelConfig read_model_file(const std::filesystem::path& file) {
-  ModelConfig cfg;
-  cfg.file = file;
-  toml::table root;
+namespace {
+
+toml::table parse(const std::filesystem::path& file) {
   try {
-    root = toml::parse_file(file.string());
+    return toml::parse_file(file.string());
   } catch (const toml::parse_error& e) {
     throw ModelFileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
                                      e.source().begin.column, e.description()));
   } catch (const std::exception& e) {
     throw ModelFileError(fmt::format("{}: cannot read: {}", file.string(), e.what()));
   }
+}
+
+// Tables merge key by key; any other value (arrays such as [[stage]] included) replaces.
+void merge_into(toml::table& base, const toml::table& over) {
+  for (const auto& [key, node] : over) {
+    toml::node* old = base.get(key.str());
+    if (old && old->is_table() && node.is_table())
+      merge_into(*old->as_table(), *node.as_table());
+    else
+      base.insert_or_assign(key, node);
+  }
+}
+
+// A model file may start from another: `base = "file.toml"` (relative to it). Keys it sets win.
+toml::table load(const std::filesystem::path& file, int depth) {
+  toml::table t = parse(file);
+  const toml::node* b = t.get("base");
+  if (!b) return t;
+  const auto name = b->value_exact<std::string>();
+  const auto line = b->source().begin.line;
+  if (!name)
+    throw ModelFileError(fmt::format("{}:{}: key 'base': must be a string", file.string(), line));
+  const std::filesystem::path path = file.parent_path() / *name;
+  if (depth >= 8 || !std::filesystem::exists(path))
+    throw ModelFileError(fmt::format(
+        "{}:{}: key 'base': {}", file.string(), line,
+        depth >= 8 ? "more than 8 nested base files" : "no such file: " + path.string()));
+  toml::table merged = load(path, depth + 1);
+  t.erase("base");
+  merge_into(merged, t);
+  return merged;
+}
+
+}  // namespace
+
+ModelConfig read_model_file(const std::filesystem::path& file) {
+  ModelConfig cfg;
+  cfg.file = file;
+  const toml::table root = load(file, 0);
   TomlSection top(root, "", file.string());
   const std::string empty;
   cfg.title = top.string("title", &empty);

@@ -38,8 +38,11 @@ void TomlSection::fail(std::string_view key, const std::string& message) const {
 
 void TomlSection::fail_at(const toml::node* where, std::string_view key,
                           const std::string& message) const {
-  const auto line = where ? where->source().begin.line : table_.source().begin.line;
-  throw ModelFileError(fmt::format("{}:{}: key '{}': {}", file_, line, key_path(key), message));
+  const toml::source_region& at = where ? where->source() : table_.source();
+  // Keys inherited from a base model file are reported against that file.
+  const std::string& file = at.path ? *at.path : file_;
+  throw ModelFileError(
+      fmt::format("{}:{}: key '{}': {}", file, at.begin.line, key_path(key), message));
 }
 
 const toml::node* TomlSection::node(std::string_view key) {
@@ -133,7 +136,8 @@ void TomlSection::finish() const {
         hint = fmt::format(" (did you mean '{}'?)", u);
       }
     }
-    throw ModelFileError(fmt::format("{}:{}: key '{}': unknown key{}", file_, k.source().begin.line,
+    const std::string& file = k.source().path ? *k.source().path : file_;
+    throw ModelFileError(fmt::format("{}:{}: key '{}': unknown key{}", file, k.source().begin.line,
                                      key_path(k.str()), hint));
   }
 }
