@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "override.hpp"
 #include "toml_section.hpp"
 
 namespace vorodec::io {
@@ -137,20 +138,8 @@ loading::Stage read_stage(TomlSection sec, std::size_t index) {
   return st;
 }
 
-}  // namespace
-
-ModelConfig read_model_file(const std::filesystem::path& file) {
-  ModelConfig cfg;
-  cfg.file = file;
-  toml::table root;
-  try {
-    root = toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw ModelFileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
-                                     e.source().begin.column, e.description()));
-  } catch (const std::exception& e) {
-    throw ModelFileError(fmt::format("{}: cannot read: {}", file.string(), e.what()));
-  }
+void read_root(const toml::table& root, ModelConfig& cfg) {
+  const std::filesystem::path& file = cfg.file;
   TomlSection top(root, "", file.string());
   const std::string empty;
   cfg.title = top.string("title", &empty);
@@ -230,6 +219,35 @@ ModelConfig read_model_file(const std::filesystem::path& file) {
     o.finish();
   }
   top.finish();
+}
+
+}  // namespace
+
+ModelConfig read_model_file(const std::filesystem::path& file,
+                            const std::vector<Override>& overrides) {
+  ModelConfig cfg;
+  cfg.file = file;
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw ModelFileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
+                                     e.source().begin.column, e.description()));
+  } catch (const std::exception& e) {
+    throw ModelFileError(fmt::format("{}: cannot read: {}", file.string(), e.what()));
+  }
+  for (const Override& o : overrides) apply_override(root, o, file.string());
+  try {
+    read_root(root, cfg);
+  } catch (const ModelFileError& e) {
+    for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {  // the last one set the value
+      if (!concerns(e.key(), o->key)) continue;
+      fail_override(
+          *o, file.string(),
+          e.key() == o->key ? e.reason() : fmt::format("key '{}': {}", e.key(), e.reason()));
+    }
+    throw;
+  }
   return cfg;
 }
 

@@ -39,7 +39,8 @@ void TomlSection::fail(std::string_view key, const std::string& message) const {
 void TomlSection::fail_at(const toml::node* where, std::string_view key,
                           const std::string& message) const {
   const auto line = where ? where->source().begin.line : table_.source().begin.line;
-  throw ModelFileError(fmt::format("{}:{}: key '{}': {}", file_, line, key_path(key), message));
+  throw ModelFileError(fmt::format("{}:{}: key '{}': {}", file_, line, key_path(key), message),
+                       key_path(key), message);
 }
 
 const toml::node* TomlSection::node(std::string_view key) {
@@ -110,8 +111,10 @@ void TomlSection::finish() const {
         hint = fmt::format(" (did you mean '{}'?)", u);
       }
     }
-    throw ModelFileError(fmt::format("{}:{}: key '{}': unknown key{}", file_, k.source().begin.line,
-                                     key_path(k.str()), hint));
+    const std::string reason = "unknown key" + hint;
+    throw ModelFileError(
+        fmt::format("{}:{}: key '{}': {}", file_, k.source().begin.line, key_path(k.str()), reason),
+        key_path(k.str()), reason);
   }
 }
 
