@@ -197,10 +197,12 @@ int run_batch(const BatchOptions& options) {
 
   // Rows travel as "index<TAB>exit code<TAB>row" lines, so rank 0 can put them in case order.
   std::string rows;
-  bool all_ok = true;
-  for (const auto& [i, o] : run_cases(plan, mine, out, options, jobs, who)) {
-    rows += fmt::format("{}\t{}\t{}", i, o.exit_code, row(plan, i, o, out));
-    all_ok &= o.exit_code == 0;
+  try {
+    for (const auto& [i, o] : run_cases(plan, mine, out, options, jobs, who))
+      rows += fmt::format("{}\t{}\t{}", i, o.exit_code, row(plan, i, o, out));
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}error: {}\n", who, e.what());
+    cluster.abort(1);
   }
   const std::vector<std::string> gathered = cluster.gather(rows);
   // Only rank 0 reports failed cases: mpirun kills the job at a rank's non-zero exit, perhaps
@@ -208,6 +210,7 @@ int run_batch(const BatchOptions& options) {
   if (!lead) return 0;
 
   std::map<std::size_t, std::string> ordered;
+  bool all_ok = true;
   for (const std::string& text : gathered) {
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {

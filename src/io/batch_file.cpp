@@ -13,7 +13,13 @@ namespace vorodec::io {
 
 namespace {
 
+// A value as TOML text; floats in their shortest exact form (5e6 -> 5000000.0, 0.005 -> 0.005).
 std::string toml_text(const toml::node& n) {
+  if (const auto d = n.value_exact<double>()) {
+    std::string t = fmt::format("{}", *d);
+    if (t.find_first_of(".en") == std::string::npos) t += ".0";
+    return t;
+  }
   std::ostringstream s;
   n.visit([&](const auto& v) { s << v; });
   return s.str();
