@@ -7,6 +7,8 @@ packages=(
   libcgal-dev libeigen3-dev libsuitesparse-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
   libvtk9-dev python3-vtk9 python3-matplotlib python3-numpy
+  # MPI for `vorodec batch` across machines (mpirun; optional at build time, used by the tests).
+  libopenmpi-dev openmpi-bin
   xvfb xauth
   # pvbatch for tests/run_paraview_check.sh (~37 packages, removes nothing). Its python3-paraview
   # conflicts with python3-vtk9 (needed by libvtk9-dev): never install it, the check unpacks its

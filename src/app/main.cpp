@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "vorodec/app/batch.hpp"
 #include "vorodec/app/simulation.hpp"
 #include "vorodec/io/model_file.hpp"
 #include "vorodec/io/specimen_file.hpp"
@@ -35,6 +36,18 @@ bool prepare_out(const fs::path& out) {
   return false;
 }
 
+// `--set key=value` options as overrides of the model file.
+std::vector<io::Override> parse_sets(const std::vector<std::string>& sets) {
+  std::vector<io::Override> out;
+  for (const std::string& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw io::ModelFileError(fmt::format("--set '{}': write KEY=VALUE, e.g. seed=7", s));
+    out.push_back({s.substr(0, eq), s.substr(eq + 1), "--set"});
+  }
+  return out;
+}
+
 void print_report(const geometry::Tessellation& t, const io::ModelConfig& cfg) {
   if (cfg.specimen_file) fmt::print("specimen loaded from {}\n", cfg.specimen_file->string());
   fmt::print("{}", geometry::format_report(t.report));
@@ -53,6 +66,15 @@ int main(int argc, char** argv) {
   int threads = 0;
   long max_steps = 0;
   bool no_vtk = false;
+  std::vector<std::string> sets;
+  app::BatchOptions batch_options;
+  const auto add_set = [&sets](CLI::App* sub) {
+    sub->add_option("--set", sets,
+                    "override a model-file key, KEY=VALUE with a TOML value "
+                    "(loading.confining_stress=5e6); repeatable")
+        ->expected(1)
+        ->take_all();
+  };
 
   auto* run = cli.add_subcommand("run", "run a model file to the end of its load path");
   run->add_option("model", model_path, "model file (.toml)")->required();
@@ -62,13 +84,26 @@ int main(int argc, char** argv) {
   run->add_option("--max-steps", max_steps, "stop after this many steps (short runs)")
       ->check(CLI::PositiveNumber);
   run->add_flag("--no-vtk", no_vtk, "do not write the VTK series");
+  add_set(run);
 
   auto* check = cli.add_subcommand("check", "validate a model file and its specimen, run nothing");
   check->add_option("model", model_path, "model file (.toml)")->required();
+  add_set(check);
 
   auto* build = cli.add_subcommand("build", "build the specimen and save it for `specimen.file`");
   build->add_option("model", model_path, "model file (.toml)")->required();
   build->add_option("--out", out_dir, "folder for specimen.vsp (default: results/<model name>)");
+
+  auto* batch = cli.add_subcommand("batch", "run every case of a batch file (also under mpirun)");
+  batch->add_option("batch_file", batch_options.batch_file, "batch file (.toml)")->required();
+  batch->add_option("--out", batch_options.out, "results folder (default: the file's `output`)");
+  batch
+      ->add_option("--jobs", batch_options.jobs,
+                   "cases at a time (default: all cores; 1 per MPI rank)")
+      ->check(CLI::PositiveNumber);
+  batch->add_option("--max-steps", batch_options.max_steps, "--max-steps of every case")
+      ->check(CLI::PositiveNumber);
+  batch->add_flag("--no-vtk", no_vtk, "cases write no VTK series");
 
   try {
     cli.parse(argc, argv);
@@ -76,9 +111,13 @@ int main(int argc, char** argv) {
     const int code = cli.exit(e);
     return code == 0 ? 0 : bad_input;
   }
+  if (batch->parsed()) {
+    batch_options.write_vtk = !no_vtk;
+    return app::run_batch(batch_options);
+  }
   if (threads > 0) omp_set_num_threads(threads);
   try {
-    const io::ModelConfig cfg = io::read_model_file(model_path);
+    const io::ModelConfig cfg = io::read_model_file(model_path, parse_sets(sets));
     geometry::Tessellation specimen;
     try {
       specimen = app::make_specimen(cfg);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "override.hpp"
 #include "toml_section.hpp"
 
 namespace vorodec::io {
@@ -181,10 +182,6 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
   stages.push_back(st);
 }
 
-}  // namespace
-
-namespace {
-
 toml::table parse(const std::filesystem::path& file) {
   try {
     return toml::parse_file(file.string());
@@ -227,12 +224,8 @@ toml::table load(const std::filesystem::path& file, int depth) {
   return merged;
 }
 
-}  // namespace
-
-ModelConfig read_model_file(const std::filesystem::path& file) {
-  ModelConfig cfg;
-  cfg.file = file;
-  const toml::table root = load(file, 0);
+void read_root(const toml::table& root, ModelConfig& cfg) {
+  const std::filesystem::path& file = cfg.file;
   TomlSection top(root, "", file.string());
   const std::string empty;
   cfg.title = top.string("title", &empty);
@@ -328,6 +321,27 @@ ModelConfig read_model_file(const std::filesystem::path& file) {
     o.finish();
   }
   top.finish();
+}
+
+}  // namespace
+
+ModelConfig read_model_file(const std::filesystem::path& file,
+                            const std::vector<Override>& overrides) {
+  ModelConfig cfg;
+  cfg.file = file;
+  toml::table root = load(file, 0);
+  for (const Override& o : overrides) apply_override(root, o, file.string());
+  try {
+    read_root(root, cfg);
+  } catch (const ModelFileError& e) {
+    for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {  // the last one set the value
+      if (!concerns(e.key(), o->key)) continue;
+      fail_override(
+          *o, file.string(),
+          e.key() == o->key ? e.reason() : fmt::format("key '{}': {}", e.key(), e.reason()));
+    }
+    throw;
+  }
   return cfg;
 }
 

@@ -42,7 +42,8 @@ void TomlSection::fail_at(const toml::node* where, std::string_view key,
   // Keys inherited from a base model file are reported against that file.
   const std::string& file = at.path ? *at.path : file_;
   throw ModelFileError(
-      fmt::format("{}:{}: key '{}': {}", file, at.begin.line, key_path(key), message));
+      fmt::format("{}:{}: key '{}': {}", file, at.begin.line, key_path(key), message),
+      key_path(key), message);
 }
 
 const toml::node* TomlSection::node(std::string_view key) {
@@ -136,9 +137,11 @@ void TomlSection::finish() const {
         hint = fmt::format(" (did you mean '{}'?)", u);
       }
     }
+    const std::string reason = "unknown key" + hint;
     const std::string& file = k.source().path ? *k.source().path : file_;
-    throw ModelFileError(fmt::format("{}:{}: key '{}': unknown key{}", file, k.source().begin.line,
-                                     key_path(k.str()), hint));
+    throw ModelFileError(
+        fmt::format("{}:{}: key '{}': {}", file, k.source().begin.line, key_path(k.str()), reason),
+        key_path(k.str()), reason);
   }
 }
 

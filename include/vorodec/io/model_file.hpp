@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/laws/contact_law.hpp"
@@ -17,6 +18,21 @@ namespace vorodec::io {
 class ModelFileError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+  // An error about one key: its dotted path ("stage[0].end_time") and the message without location.
+  ModelFileError(const std::string& what, std::string key, std::string reason)
+      : std::runtime_error(what), key_(std::move(key)), reason_(std::move(reason)) {}
+  const std::string& key() const noexcept { return key_; }
+  const std::string& reason() const noexcept { return reason_; }
+
+ private:
+  std::string key_, reason_;
+};
+
+// One value replaced in a model file before it is read (`vorodec run --set`, batch files).
+struct Override {
+  std::string key;     // dotted path: "loading.confining_stress", "seed", "stage[0].end_time"
+  std::string value;   // a TOML value: 5e6, 42, "linear_elastic", { weibull_shape = 4, mean = 1e7 }
+  std::string origin;  // where it was given, for messages: "batch.toml:12", "--set"
 };
 
 struct LawChoice {
@@ -47,6 +63,9 @@ struct ModelConfig {
   OutputSettings output;
 };
 
-ModelConfig read_model_file(const std::filesystem::path& file);
+// Overrides are applied to the parsed file, so they are validated like the file's own keys; an
+// error about an override names its origin instead of the model file's line.
+ModelConfig read_model_file(const std::filesystem::path& file,
+                            const std::vector<Override>& overrides = {});
 
 }  // namespace vorodec::io

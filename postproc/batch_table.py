@@ -1,0 +1,95 @@
+#!/usr/bin/python3
+"""Plots the results.csv of `vorodec batch`: peak stress against confining stress, with a
+Mohr-Coulomb fit of the peak-strength envelope.
+
+Usage: postproc/batch_table.py results/batch_confinement/results.csv [-o out.png]
+
+Uses the columns `loading.confining_stress` (sigma3, Pa; a case without it has sigma3 = 0) and
+`peak_stress_Pa` (sigma1, Pa) of the cases with exit code 0. The fit is the least-squares line
+sigma1 = C0 + q sigma3, read as Mohr-Coulomb: friction angle phi = asin((q - 1) / (q + 1)),
+cohesion c = C0 (1 - sin phi) / (2 cos phi). With one confining stress only (a seed series) it
+draws each case's peak stress and their mean and standard deviation instead.
+Default output: <csv without .csv>.png.
+
+Needs Debian's /usr/bin/python3 with python3-numpy and python3-matplotlib.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+SIGMA3 = "loading.confining_stress"
+
+
+def read_cases(path):
+    """Returns (names, sigma3, sigma1) in Pa for the cases that finished (exit code 0)."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows or "peak_stress_Pa" not in rows[0]:
+        raise ValueError("%s: not a vorodec batch results.csv (no peak_stress_Pa column)" % path)
+    names, s3, s1 = [], [], []
+    for r in rows:
+        if r.get("exit_code") != "0" or not r.get("peak_stress_Pa"):
+            print("skipped %s: exit code %s" % (r.get("case"), r.get("exit_code")), file=sys.stderr)
+            continue
+        names.append(r["case"])
+        s3.append(float(r.get(SIGMA3) or 0.0))
+        s1.append(float(r["peak_stress_Pa"]))
+    return names, np.array(s3), np.array(s1)
+
+
+def mohr_coulomb(s3, s1):
+    """Least-squares sigma1 = C0 + q sigma3; returns (C0, q, phi in degrees, c)."""
+    q, c0 = np.polyfit(s3, s1, 1)
+    sin_phi = (q - 1.0) / (q + 1.0)
+    phi = math.asin(max(-1.0, min(1.0, sin_phi)))
+    c = c0 * (1.0 - math.sin(phi)) / (2.0 * math.cos(phi))
+    return c0, q, math.degrees(phi), c
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("csv")
+    p.add_argument("-o", "--out")
+    a = p.parse_args()
+    names, s3, s1 = read_cases(a.csv)
+    if not names:
+        sys.exit("%s: no case finished with exit code 0" % a.csv)
+    out = a.out or os.path.splitext(a.csv)[0] + ".png"
+    title = os.path.basename(os.path.dirname(os.path.abspath(a.csv)))
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    if len(set(s3)) >= 2:
+        c0, q, phi, c = mohr_coulomb(s3, s1)
+        ax.plot(s3 / 1e6, s1 / 1e6, "o", label="cases (peak stress)")
+        x = np.linspace(0.0, s3.max(), 50)
+        ax.plot(x / 1e6, (c0 + q * x) / 1e6, "-",
+                label="Mohr-Coulomb fit: c = %.1f MPa, phi = %.1f deg\n"
+                      "sigma1 = %.1f MPa + %.2f sigma3" % (c / 1e6, phi, c0 / 1e6, q))
+        ax.set_xlabel("confining stress sigma3 (MPa)")
+        ax.set_ylabel("peak axial stress sigma1 (MPa)")
+        print("Mohr-Coulomb fit of %d cases: C0 = %.2f MPa, q = %.3f, phi = %.2f deg, c = %.2f MPa"
+              % (len(names), c0 / 1e6, q, phi, c / 1e6))
+    else:
+        mean, std = s1.mean(), s1.std(ddof=1) if len(s1) > 1 else 0.0
+        ax.bar(range(len(names)), s1 / 1e6)
+        ax.axhline(mean / 1e6, color="k", label="mean %.2f MPa, std %.2f MPa" % (mean / 1e6, std / 1e6))
+        ax.set_xticks(range(len(names)), names, rotation=45, ha="right", fontsize=7)
+        ax.set_ylabel("peak axial stress (MPa)")
+        print("peak stress of %d cases: mean %.2f MPa, std %.2f MPa" % (len(names), mean / 1e6, std / 1e6))
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    print("wrote %s" % out)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,230 @@
+#include "vorodec/app/batch.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "cluster.hpp"
+#include "vorodec/io/batch_file.hpp"
+
+extern char** environ;
+
+namespace vorodec::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int bad_input = 2, some_case_failed = 5;
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + '"';
+}
+
+// One field of the summary.json vorodec run writes, as written ("" if absent).
+std::string json_field(const std::string& text, const std::string& key) {
+  const std::string tag = "\"" + key + "\":";
+  auto pos = text.find(tag);
+  if (pos == std::string::npos) return {};
+  pos = text.find_first_not_of(' ', pos + tag.size());
+  if (pos == std::string::npos) return {};
+  if (text[pos] == '"') {
+    const auto end = text.find("\",\n", pos + 1);
+    return end == std::string::npos ? std::string() : text.substr(pos + 1, end - pos - 1);
+  }
+  const auto end = text.find_first_of(",\n}", pos);
+  return text.substr(pos, end - pos);
+}
+
+struct Outcome {
+  int exit_code = 0;
+  double wall_seconds = 0;
+};
+
+// The command line of one case: a plain `vorodec run`, so a case can be rerun by hand.
+std::vector<std::string> case_command(const io::BatchCase& c, const fs::path& dir,
+                                      const BatchOptions& options) {
+  std::vector<std::string> args{"vorodec",   "run", c.model.string(), "--out", dir.string(),
+                                "--threads", "1"};
+  if (options.max_steps > 0) {
+    args.push_back("--max-steps");
+    args.push_back(std::to_string(options.max_steps));
+  }
+  if (!options.write_vtk) args.push_back("--no-vtk");
+  for (const io::Override& o : c.overrides) {
+    args.push_back("--set");
+    args.push_back(o.key + "=" + o.value);
+  }
+  return args;
+}
+
+pid_t spawn_case(const std::vector<std::string>& args, const fs::path& dir) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const std::string log = (dir / "log.txt").string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = -1;
+  const int err = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (err != 0) throw std::runtime_error(fmt::format("cannot start a case: {}", strerror(err)));
+  return pid;
+}
+
+int exit_code_of(int status) {
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 1;  // as a shell reports a signal
+}
+
+// Runs the cases `mine` (indices into plan.cases), `jobs` at a time.
+std::map<std::size_t, Outcome> run_cases(const io::BatchPlan& plan,
+                                         const std::vector<std::size_t>& mine, const fs::path& out,
+                                         const BatchOptions& options, int jobs,
+                                         const std::string& who) {
+  using clock = std::chrono::steady_clock;
+  std::map<std::size_t, Outcome> done;
+  std::map<pid_t, std::pair<std::size_t, clock::time_point>> running;
+  std::size_t next = 0;
+  while (next < mine.size() || !running.empty()) {
+    while (next < mine.size() && running.size() < static_cast<std::size_t>(jobs)) {
+      const std::size_t i = mine[next++];
+      const io::BatchCase& c = plan.cases[i];
+      const fs::path dir = out / c.name;
+      fs::create_directories(dir);
+      fs::remove(dir / "summary.json");  // never report a previous batch's result
+      running[spawn_case(case_command(c, dir, options), dir)] = {i, clock::now()};
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0) throw std::runtime_error("lost track of the running cases");
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const auto [i, start] = it->second;
+    running.erase(it);
+    Outcome o{exit_code_of(status), std::chrono::duration<double>(clock::now() - start).count()};
+    done[i] = o;
+    fmt::print("{}case {}/{} {}: exit {} after {:.1f} s\n", who, i + 1, plan.cases.size(),
+               plan.cases[i].name, o.exit_code, o.wall_seconds);
+    std::fflush(stdout);
+  }
+  return done;
+}
+
+std::string header(const io::BatchPlan& plan) {
+  std::string h = "case,model";
+  for (const std::string& key : plan.columns) h.append(",").append(csv_field(key));
+  return h +
+         ",exit_code,status,peak_stress_Pa,youngs_modulus_Pa,poisson_ratio,steps,cracks_tensile,"
+         "cracks_shear,wall_time_s\n";
+}
+
+std::string row(const io::BatchPlan& plan, std::size_t i, const Outcome& o, const fs::path& out) {
+  const io::BatchCase& c = plan.cases[i];
+  std::string summary;
+  if (std::ifstream in(out / c.name / "summary.json"); in) {
+    std::ostringstream s;
+    s << in.rdbuf();
+    summary = s.str();
+  }
+  const std::string status = summary.empty() ? fmt::format("no summary, see {}/log.txt", c.name)
+                                             : json_field(summary, "status");
+  // Appends only: GCC 12 warns (-Wrestrict, falsely) about "," + std::string here.
+  std::string r = csv_field(c.name);
+  r.append(",").append(csv_field(c.model.string()));
+  for (const std::string& key : plan.columns)
+    r.append(",").append(csv_field(io::override_value(c, key)));
+  r += fmt::format(",{},{}", o.exit_code, csv_field(status));
+  for (const char* key : {"peak_stress_Pa", "youngs_modulus_Pa", "poisson_ratio", "steps"})
+    r.append(",").append(json_field(summary, key));
+  for (const char* key : {"tensile", "shear"}) r.append(",").append(json_field(summary, key));
+  return r + fmt::format(",{:.3f}\n", o.wall_seconds);
+}
+
+}  // namespace
+
+int run_batch(const BatchOptions& options) {
+  Cluster cluster;
+  const bool lead = cluster.rank() == 0;
+  if (cluster.launched_without_mpi()) {
+    fmt::print(stderr,
+               "error: started as several MPI ranks, but this vorodec was built without MPI "
+               "(cmake -DVORODEC_MPI=ON with libopenmpi-dev installed)\n");
+    return bad_input;
+  }
+  io::BatchPlan plan;
+  try {
+    plan = io::read_batch_file(options.batch_file);
+    for (const io::BatchCase& c : plan.cases) io::read_model_file(c.model, c.overrides);
+  } catch (const io::ModelFileError& e) {
+    if (lead) fmt::print(stderr, "error: {}\n", e.what());
+    return bad_input;  // every rank read the same files and stops here alike
+  }
+  const fs::path out = options.out.empty() ? plan.output : options.out;
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out)) {
+    fmt::print(stderr, "error: results folder '{}' cannot be created\n", out.string());
+    cluster.abort(bad_input);
+  }
+  int jobs = options.jobs;
+  if (jobs <= 0)
+    jobs =
+        cluster.size() > 1 ? 1 : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  std::vector<std::size_t> mine;
+  for (std::size_t i = static_cast<std::size_t>(cluster.rank()); i < plan.cases.size();
+       i += static_cast<std::size_t>(cluster.size()))
+    mine.push_back(i);
+  const std::string who = cluster.size() > 1 ? fmt::format("rank {}: ", cluster.rank()) : "";
+  if (lead)
+    fmt::print("{}: {} cases, {} process(es) x {} at a time, results in {}/\n",
+               options.batch_file.string(), plan.cases.size(), cluster.size(), jobs, out.string());
+
+  // Rows travel as "index<TAB>exit code<TAB>row" lines, so rank 0 can put them in case order.
+  std::string rows;
+  try {
+    for (const auto& [i, o] : run_cases(plan, mine, out, options, jobs, who))
+      rows += fmt::format("{}\t{}\t{}", i, o.exit_code, row(plan, i, o, out));
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}error: {}\n", who, e.what());
+    cluster.abort(1);
+  }
+  const std::vector<std::string> gathered = cluster.gather(rows);
+  // Only rank 0 reports failed cases: mpirun kills the job at a rank's non-zero exit, perhaps
+  // before rank 0 has written the table.
+  if (!lead) return 0;
+
+  std::map<std::size_t, std::string> ordered;
+  bool all_ok = true;
+  for (const std::string& text : gathered) {
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+      const auto tab1 = line.find('\t'), tab2 = line.find('\t', tab1 + 1);
+      ordered[std::stoul(line.substr(0, tab1))] = line.substr(tab2 + 1);
+      all_ok &= line.substr(tab1 + 1, tab2 - tab1 - 1) == "0";
+    }
+  }
+  std::ofstream table(out / "results.csv");
+  table << header(plan);
+  for (const auto& [i, r] : ordered) table << r << '\n';
+  fs::copy_file(options.batch_file, out / "batch.toml", fs::copy_options::overwrite_existing, ec);
+  fmt::print("results.csv: {} rows in {}/\n", ordered.size(), out.string());
+  return all_ok ? 0 : some_case_failed;
+}
+
+}  // namespace vorodec::app
