@@ -8,11 +8,13 @@
 #include <cmath>
 #include <fstream>
 
+#include "damage_output.hpp"
 #include "progress.hpp"
 #include "vorodec/io/csv_writer.hpp"
 #include "vorodec/io/specimen_file.hpp"
 #include "vorodec/io/vtk_writer.hpp"
 #include "vorodec/loading/boundary.hpp"
+#include "vorodec/measure/damage.hpp"
 #include "vorodec/measure/specimen.hpp"
 #include "vorodec/model/build.hpp"
 #include "vorodec/model/contact_geometry.hpp"
@@ -105,11 +107,8 @@ void write_cracks(const std::filesystem::path& file, const std::vector<laws::Cra
                                         "length", "block_a", "block_b", "type"};
   io::CsvWriter csv(file, header);
   for (const auto& e : cracks) {
-    // Orientation of the crack (joint) line, 0-180 degrees from the x axis.
-    double ang = std::atan2(e.nx, -e.ny) * 180.0 / M_PI;
-    if (ang < 0) ang += 180.0;
-    if (ang >= 180.0) ang -= 180.0;
-    const double v[] = {e.time, e.x, e.y, ang, e.length, double(e.a), double(e.b)};
+    const double v[] = {e.time,   e.x,         e.y,        measure::crack_orientation_deg(e),
+                        e.length, double(e.a), double(e.b)};
     csv.row(v, e.type == laws::ContactEvent::tensile_failure ? "tensile" : "shear");
   }
 }
@@ -167,6 +166,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
                                         "cracks_tensile",
                                         "cracks_shear",
                                         "failure_rate",
+                                        "damage_density",
+                                        "p21",
                                         "boundary_work",
                                         "strain_energy",
                                         "kinetic_energy",
@@ -177,6 +178,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   io::CsvWriter history(options.out / "history.csv", header);
   std::unique_ptr<io::VtkSeriesWriter> vtk;
   if (options.write_vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options.out / "vtk");
+  DamageOutput damage(model, cfg.output.damage_grid_cell, options.out);
 
   std::vector<double> h_strain, h_stress, h_lateral;
   std::size_t n_tensile = 0, n_shear = 0;
@@ -190,6 +192,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
     count_cracks();
     const auto& e = solver.energy();
     const double broken = double(n_tensile + n_shear);
+    const measure::DamageState dmg = damage.measure(model, solver);
     const double row[] = {
         double(solver.steps()),
         solver.time(),
@@ -200,6 +203,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         double(n_tensile),
         double(n_shear),
         solver.initial_bonded_contacts() ? broken / double(solver.initial_bonded_contacts()) : 0.0,
+        dmg.damage_density,
+        dmg.p21,
         e.boundary_work,
         solver.contact_strain_energy(),
         solver.kinetic_energy(),
@@ -210,6 +215,13 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
     h_strain.push_back(state.axial_strain);
     h_stress.push_back(state.axial_stress);
     h_lateral.push_back(state.lateral_strain);
+  };
+  // A VTK output time: rose.csv row always, VTK frame (with the damage fields) unless --no-vtk.
+  const auto output_frame = [&](const std::string& stage) {
+    io::VtkFrame frame;
+    if (vtk) frame = make_frame(model, solver);
+    damage.output_time(model, solver, stage, state.axial_stress, vtk ? &frame : nullptr);
+    if (vtk) vtk->write(frame);
   };
 
   RunSummary summary;
@@ -257,8 +269,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         }
         peak = std::max(peak, state.axial_stress);
         if (solver.steps() % cfg.output.history_steps == 0) record(st.name);
-        if (vtk && solver.steps() % cfg.output.vtk_steps == 0)
-          vtk->write(make_frame(model, solver));
+        if (solver.steps() % cfg.output.vtk_steps == 0) output_frame(st.name);
         // End conditions.
         const auto& end = st.end;
         double fraction = 0.0;
@@ -299,7 +310,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         if (done) break;
       }
       record(st.name + ":end");
-      if (vtk) vtk->write(make_frame(model, solver));
+      output_frame(st.name + ":end");
     }
   } catch (const solver::InstabilityError& e) {
     summary.exit_code = 3;
@@ -308,8 +319,9 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
       model.blocks.x = good_x;
       model.blocks.y = good_y;
       model.blocks.theta = good_t;
+      model.blocks.refresh_world();  // the frame and the damage measures read world positions
     }
-    if (vtk) vtk->write(make_frame(model, solver));
+    output_frame("unstable");
   }
   progress.finish();
   history.flush();
