@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace vorodec::app {
@@ -17,12 +19,20 @@ std::vector<std::string> rose_header() {
   return h;
 }
 
+// About 5 mean block sizes, so that a cell holds ~25 blocks, adjusted to a whole number of cells
+// across the specimen's width (no sliver column of noisy, partly covered cells).
+double default_cell(const measure::DamageBaseline& base) {
+  const double width = base.hi.x - base.lo.x, target = 5.0 * base.mean_block_size;
+  if (!(width > 0.0) || !(target > 0.0)) return 0.0;
+  return width / std::max(1.0, std::round(width / target));
+}
+
 }  // namespace
 
 DamageOutput::DamageOutput(const model::Model& m, double grid_cell,
                            const std::filesystem::path& out_dir)
     : base_(measure::damage_baseline(m)),
-      cell_(grid_cell > 0.0 ? grid_cell : 5.0 * base_.mean_block_size),
+      cell_(grid_cell > 0.0 ? grid_cell : default_cell(base_)),
       rose_(out_dir / "rose.csv", rose_header()) {}
 
 measure::DamageState DamageOutput::measure(const model::Model& m,

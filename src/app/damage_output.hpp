@@ -13,7 +13,8 @@ namespace vorodec::app {
 
 class DamageOutput {
  public:
-  // Takes the baseline from the model's initial contacts; grid_cell <= 0: 5 mean block sizes.
+  // Takes the baseline from the model's initial contacts. grid_cell <= 0: about 5 mean block sizes,
+  // a whole number of cells across the specimen's width.
   DamageOutput(const model::Model& m, double grid_cell, const std::filesystem::path& out_dir);
 
   measure::DamageState measure(const model::Model& m, const solver::Solver& solver) const;
