@@ -1,8 +1,9 @@
 #pragma once
 // Damage measures of the rock-mechanics literature, read from the model state and the solver's
 // crack events (not from images): contact failure rate D_Mi, damage density D_Ma, crack intensity
-// P21 and its rose of 10-degree bins (paper 004: Eqs. 2-4), the failed fraction of each block's
-// initial contacts, and P21 and D_Ma on a regular grid. Pure functions; no I/O.
+// P21 and its rose of 10-degree bins ("Mesomechanical characteristics of rock failure under
+// variable amplitude cyclic loading by DEM", Rock Mech. Rock Eng., Eqs. 2-4), the failed fraction
+// of each block's initial contacts, and P21 and D_Ma on a regular grid. Pure functions; no I/O.
 #include <array>
 #include <cstdint>
 #include <span>
