@@ -141,3 +141,18 @@ TEST(BadInput, UnwritableOutputFolderIsRejected) {
 TEST(BadInput, UnknownCommandLineOptionExitsWithTwo) {
   EXPECT_EQ(run("run --no-such-option x.toml").code, 2);
 }
+
+TEST(BadInput, CyclicBlockWithLowerLimitAboveAnUpperLimitIsRejected) {
+  const std::string cyclic =
+      "[[stage]]\ncontrol = \"cyclic\"\nupper_stresses = [10e6, 20e6]\nlower_stress = 15e6\n"
+      "platen_velocity = 0.05\nunloading_rate = 1e9\n";
+  EXPECT_TRUE(rejected("cyclic_lower", replace(good_model, "[[stage]]\n", cyclic + "[[stage]]\n"),
+                       "stage[0].lower_stress", 17, "must lie below every upper stress"));
+}
+
+TEST(BadInput, CyclicBlockWithoutUnloadingRateIsRejected) {
+  const std::string cyclic =
+      "[[stage]]\ncontrol = \"cyclic\"\nupper_stresses = [10e6, 20e6]\nplaten_velocity = 0.05\n";
+  EXPECT_TRUE(rejected("cyclic_rate", replace(good_model, "[[stage]]\n", cyclic + "[[stage]]\n"),
+                       "stage[0].unloading_rate", 14, "required key is missing"));
+}

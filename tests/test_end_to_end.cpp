@@ -2,8 +2,6 @@
 // and the stress-strain curve matches the committed reference (tests/reference/).
 #include <gtest/gtest.h>
 #include <omp.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -20,52 +18,14 @@
 #include <string>
 #include <vector>
 
+#include "run_support.hpp"
+
 namespace fs = std::filesystem;
+using namespace vorodec::testing;
 
 namespace {
 
 const fs::path model = fs::path(VORODEC_SOURCE_DIR) / "tests/models/e2e_small.toml";
-
-int vorodec(const std::string& args) {
-  const int status =
-      std::system((std::string(VORODEC_BINARY) + " " + args + " > /dev/null 2>&1").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// One folder per process: ctest runs each test as its own process, several at a time.
-fs::path base_dir() {
-  return fs::temp_directory_path() / ("vorodec_e2e_" + std::to_string(getpid()));
-}
-
-fs::path out_dir(const std::string& name) {
-  const fs::path d = base_dir() / name;
-  fs::remove_all(d);
-  return d;
-}
-
-std::vector<std::vector<double>> read_csv(const fs::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) {
-      try {
-        row.push_back(std::stod(cell));
-      } catch (...) {
-      }
-    }
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-std::string slurp(const fs::path& f) {
-  std::ifstream in(f);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // Columns: 2 axial_strain, 3 axial_stress.
 double peak_of(const std::vector<std::vector<double>>& rows) {
@@ -77,7 +37,8 @@ double peak_of(const std::vector<std::vector<double>>& rows) {
 class EndToEnd : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    run_code_ = vorodec("run " + model.string() + " --threads 1 --out " + out_dir("one").string());
+    run_code_ =
+        run_vorodec("run " + model.string() + " --threads 1 --out " + out_dir("one").string());
   }
   static int run_code_;
 };
@@ -126,7 +87,8 @@ TEST_F(EndToEnd, VtkSeriesReadsBackThroughVtk) {
 TEST_F(EndToEnd, SameSeedGivesIdenticalResultsWithOneAndTwoThreads) {
   ASSERT_EQ(run_code_, 0);
   const fs::path two = out_dir("two");
-  ASSERT_EQ(vorodec("run " + model.string() + " --threads 2 --no-vtk --out " + two.string()), 0);
+  ASSERT_EQ(run_vorodec("run " + model.string() + " --threads 2 --no-vtk --out " + two.string()),
+            0);
   const auto a = read_csv(base_dir() / "one/history.csv");
   const auto b = read_csv(two / "history.csv");
   ASSERT_EQ(a.size(), b.size());
@@ -138,7 +100,7 @@ TEST_F(EndToEnd, SameSeedGivesIdenticalResultsWithOneAndTwoThreads) {
 TEST_F(EndToEnd, PreparedSpecimenReproducesTheRunBitForBit) {
   ASSERT_EQ(run_code_, 0);
   const fs::path built = out_dir("built");
-  ASSERT_EQ(vorodec("build " + model.string() + " --out " + built.string()), 0);
+  ASSERT_EQ(run_vorodec("build " + model.string() + " --out " + built.string()), 0);
   ASSERT_TRUE(fs::exists(built / "specimen.vsp"));
   std::string text = slurp(model);
   const auto from = text.find("[specimen]"), to = text.find("[blocks]");
@@ -148,7 +110,8 @@ TEST_F(EndToEnd, PreparedSpecimenReproducesTheRunBitForBit) {
   std::ofstream(reload_model) << text;
   const fs::path again = out_dir("again");
   ASSERT_EQ(
-      vorodec("run " + reload_model.string() + " --threads 1 --no-vtk --out " + again.string()), 0);
+      run_vorodec("run " + reload_model.string() + " --threads 1 --no-vtk --out " + again.string()),
+      0);
   const auto a = read_csv(base_dir() / "one/history.csv");
   const auto b = read_csv(again / "history.csv");
   ASSERT_EQ(a.size(), b.size());

@@ -105,11 +105,14 @@ int main(int argc, char** argv) {
     app::RunOptions options{out, max_steps, !no_vtk, true};
     const app::RunSummary s = app::run_model(cfg, specimen, options);
     fmt::print(
-        "{}: {} after {} steps in {:.1f} s; peak stress {:.2f} MPa, E {:.2f} GPa, nu {:.3f}; "
+        "{}: {} after {} steps in {:.1f} s; peak stress {:.2f} MPa,{} E {:.2f} GPa, nu {:.3f}; "
         "cracks {} tensile, {} shear\nresults in {}/ (history.csv, summary.json, cracks.csv, "
         "vtk/*.pvd)\n",
-        model_path, s.status, s.steps, s.wall_seconds, s.peak_stress / 1e6, s.youngs_modulus / 1e9,
-        s.poisson_ratio, s.cracks_tensile, s.cracks_shear, out.string());
+        model_path, s.status, s.steps, s.wall_seconds, s.peak_stress / 1e6,
+        s.tensile_strength > 0
+            ? fmt::format(" tensile strength {:.2f} MPa,", s.tensile_strength / 1e6)
+            : "",
+        s.youngs_modulus / 1e9, s.poisson_ratio, s.cracks_tensile, s.cracks_shear, out.string());
     return s.exit_code;
   } catch (const io::ModelFileError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

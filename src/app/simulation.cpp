@@ -14,7 +14,10 @@
 #include "vorodec/io/specimen_file.hpp"
 #include "vorodec/io/vtk_writer.hpp"
 #include "vorodec/loading/boundary.hpp"
+#include "vorodec/loading/stage_control.hpp"
+#include "vorodec/measure/cycles.hpp"
 #include "vorodec/measure/damage.hpp"
+#include "vorodec/measure/failure_stages.hpp"
 #include "vorodec/measure/specimen.hpp"
 #include "vorodec/model/build.hpp"
 #include "vorodec/model/contact_geometry.hpp"
@@ -60,6 +63,10 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
   set(Group::specimen, Group::specimen, 0);
   set(Group::specimen, Group::bottom_platen, 1);
   set(Group::specimen, Group::top_platen, 1);
+  for (Group p : {Group::bottom_platen, Group::top_platen}) {
+    table.bond[static_cast<std::size_t>(p)][0] = cfg.platens_bonded;
+    table.bond[0][static_cast<std::size_t>(p)] = cfg.platens_bonded;
+  }
   solver::SolverSettings settings = cfg.solver;
   if (settings.contact_tolerance <= 0) settings.contact_tolerance = d;
   s.solver = std::make_unique<solver::Solver>(*s.model, std::move(groups), table, settings);
@@ -113,19 +120,52 @@ void write_cracks(const std::filesystem::path& file, const std::vector<laws::Cra
   }
 }
 
+void write_cycles(const std::filesystem::path& file,
+                  const std::vector<measure::CycleMeasures>& cycles) {
+  const std::vector<std::string> header{"cycle",
+                                        "upper_target_Pa",
+                                        "upper_reached_Pa",
+                                        "stalled",
+                                        "secant_modulus_Pa",
+                                        "poisson_ratio",
+                                        "input_work_J_m3",
+                                        "recovered_work_J_m3",
+                                        "dissipated_work_J_m3",
+                                        "dissipated_total_J_m3",
+                                        "residual_strain"};
+  io::CsvWriter csv(file, header);
+  for (const auto& c : cycles) {
+    const double v[] = {double(c.cycle),       c.upper_target,   c.upper_reached,
+                        c.stalled ? 1.0 : 0.0, c.secant_modulus, c.poisson_ratio,
+                        c.input_work,          c.recovered_work, c.dissipated_work,
+                        c.dissipated_total,    c.residual_strain};
+    csv.row(v);
+  }
+}
+
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,
                    const RunSummary& s, std::size_t initial_contacts, double dt,
                    std::size_t broken) {
   std::ofstream out(file);
+  const auto& f = s.failure_stages;
+  const std::string stages =
+      f.valid ? fmt::format(
+                    "{{\"crack_initiation_stress_Pa\": {:.8g}, "
+                    "\"accelerating_crack_growth_stress_Pa\": {:.8g}, "
+                    "\"peak_stress_Pa\": {:.8g}}}",
+                    f.crack_initiation_stress, f.accelerating_stress, f.peak_stress)
+              : "null";
   out << fmt::format(
       "{{\n  \"model\": \"{}\",\n  \"status\": \"{}\",\n  \"peak_stress_Pa\": {:.8g},\n"
+      "  \"tensile_strength_Pa\": {:.8g},\n  \"failure_stages\": {},\n"
+      "  \"cycles\": {},\n"
       "  \"youngs_modulus_Pa\": {:.8g},\n  \"poisson_ratio\": {:.6g},\n"
       "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
       "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n  \"failure_rate\": {:.6g},\n"
       "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
       "  \"steps\": {},\n  \"wall_time_s\": {:.3f}\n}}\n",
-      cfg.file.filename().string(), s.status, s.peak_stress, s.youngs_modulus, s.poisson_ratio,
-      s.cracks_tensile, s.cracks_shear,
+      cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
+      s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
       initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
       initial_contacts, dt, s.steps, s.wall_seconds);
 }
@@ -180,7 +220,9 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   if (options.write_vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options.out / "vtk");
   DamageOutput damage(model, cfg.output.damage_grid_cell, options.out);
 
-  std::vector<double> h_strain, h_stress, h_lateral;
+  std::vector<double> h_strain, h_stress, h_lateral, h_failure;
+  std::vector<measure::HistoryPoint> rows;
+  int current_stage = 0;
   std::size_t n_tensile = 0, n_shear = 0;
   const auto count_cracks = [&] {
     n_tensile = n_shear = 0;
@@ -215,6 +257,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
     h_strain.push_back(state.axial_strain);
     h_stress.push_back(state.axial_stress);
     h_lateral.push_back(state.lateral_strain);
+    h_failure.push_back(row[8]);
+    rows.push_back({state.axial_strain, state.axial_stress, state.lateral_strain, current_stage});
   };
   // A VTK output time: rose.csv row always, VTK frame (with the damage fields) unless --no-vtk.
   const auto output_frame = [&](const std::string& stage) {
@@ -227,17 +271,20 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   RunSummary summary;
   summary.blocks = model.blocks.size();
   summary.status = "finished";
-  Progress progress(options.progress, cfg.load_path.stages.size());
+  const auto& stages = cfg.load_path.stages;
+  Progress progress(options.progress, stages.size());
   const long step_limit = options.max_steps > 0 ? options.max_steps : cfg.max_steps;
-  double v = 0.0, peak = 0.0;
+  double v = 0.0, peak = 0.0, trough = 0.0;
   std::vector<double> good_x, good_y, good_t;  // last state that passed the stability check
+  std::vector<bool> stalled(stages.size(), false);
   bool stop = false;
+  int resume_at = -1;  // a stalled cyclic block resumes here after its unloading
   try {
-    for (std::size_t si = 0; si < cfg.load_path.stages.size() && !stop; ++si) {
-      const loading::Stage& st = cfg.load_path.stages[si];
-      const double t0 = solver.time(), v0 = v, eps0 = state.axial_strain;
-      double row_peak = 0.0;
-      long held = 0, rows_since_peak = 0;
+    for (std::size_t si = 0; si < stages.size() && !stop; ++si) {
+      const loading::Stage& st = stages[si];
+      current_stage = static_cast<int>(si);
+      const double t0 = solver.time();
+      loading::StageControl control(st, v, state.axial_stress, state.axial_strain);
       record(st.name + ":start");
       for (;;) {
         if (solver.steps() >= step_limit) {
@@ -247,16 +294,10 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
           break;
         }
         const double ts = solver.time() - t0;
-        if (st.control == loading::Control::platen_velocity) {
-          v = ts < st.ramp_time ? v0 + (st.platen_velocity - v0) * ts / st.ramp_time
-                                : st.platen_velocity;
-        } else {  // servo on the top platen (PFC wall servo, gain 0.8 / (K dt))
-          const double k =
-              solver.contact_stiffness_on(static_cast<std::size_t>(boundary.top_platen()));
-          const double df = (st.target_stress - state.axial_stress) * boundary.width();
-          v = k > 0 ? 0.8 * df / (k * solver.dt()) : st.platen_velocity;
-          v = std::clamp(v, -st.platen_velocity, st.platen_velocity);
-        }
+        v = control.platen_velocity(
+            ts, state.axial_stress,
+            solver.contact_stiffness_on(static_cast<std::size_t>(boundary.top_platen())),
+            solver.dt(), boundary.width());
         boundary.set_platen_velocity(model, v);
         boundary.apply_confinement(model, sigma3);
         solver.step();
@@ -268,49 +309,25 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
           good_t = model.blocks.theta;
         }
         peak = std::max(peak, state.axial_stress);
-        if (solver.steps() % cfg.output.history_steps == 0) record(st.name);
+        trough = std::min(trough, state.axial_stress);
+        const bool row = solver.steps() % cfg.output.history_steps == 0;
+        if (row) record(st.name);
         if (solver.steps() % cfg.output.vtk_steps == 0) output_frame(st.name);
-        // End conditions.
-        const auto& end = st.end;
-        double fraction = 0.0;
-        bool done = false;
-        if (!std::isnan(end.axial_strain)) {
-          const double span = end.axial_strain - eps0;
-          fraction = std::max(fraction, span != 0 ? (state.axial_strain - eps0) / span : 1.0);
-          done |= span >= 0 ? state.axial_strain >= end.axial_strain
-                            : state.axial_strain <= end.axial_strain;
+        const loading::StageOutcome outcome =
+            control.judge({solver.time() - t0, state.axial_stress, state.axial_strain, row});
+        progress.update(si, control.fraction(), state.axial_stress, peak, solver.steps());
+        if (outcome == loading::StageOutcome::stalled) {
+          stalled[si] = true;
+          resume_at = st.block_end;
         }
-        if (!std::isnan(end.post_peak_fraction) && solver.steps() % cfg.output.history_steps == 0) {
-          // Judged on history rows: the peak must lie three rows back, so start-up noise is no
-          // peak.
-          if (state.axial_stress > row_peak) {
-            row_peak = state.axial_stress;
-            rows_since_peak = 0;
-          } else {
-            ++rows_since_peak;
-          }
-          if (row_peak > 0 && rows_since_peak >= 3) {
-            const double drop =
-                (1.0 - state.axial_stress / row_peak) / (1.0 - end.post_peak_fraction);
-            fraction = std::max(fraction, std::clamp(drop, 0.0, 1.0));
-            done |= state.axial_stress < end.post_peak_fraction * row_peak;
-          }
-        }
-        if (!std::isnan(end.stress)) {
-          const bool near =
-              std::abs(state.axial_stress - end.stress) <= 0.01 * std::max(end.stress, 1e5);
-          held = near ? held + 1 : 0;
-          if (std::isnan(end.duration)) done |= held >= 200;
-        }
-        if (!std::isnan(end.duration)) {
-          fraction = std::max(fraction, ts / end.duration);
-          done |= ts >= end.duration;
-        }
-        progress.update(si, fraction, state.axial_stress, peak, solver.steps());
-        if (done) break;
+        if (outcome != loading::StageOutcome::running) break;
       }
-      record(st.name + ":end");
-      output_frame(st.name + ":end");
+      record(st.name + (stalled[si] ? ":stalled" : ":end"));
+      output_frame(st.name + (stalled[si] ? ":stalled" : ":end"));
+      if (resume_at >= 0 && st.phase == loading::CyclePhase::unloading) {
+        si = static_cast<std::size_t>(resume_at) - 1;
+        resume_at = -1;
+      }
     }
   } catch (const solver::InstabilityError& e) {
     summary.exit_code = 3;
@@ -327,8 +344,25 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   history.flush();
   count_cracks();
   write_cracks(options.out / "cracks.csv", solver.cracks());
-  const auto ec = measure::elastic_constants(h_strain, h_stress, h_lateral);
+  // A pulled specimen (direct tension): its elastic constants come from the tensile branch.
+  const double sense = -trough > peak ? -1.0 : 1.0;
+  for (auto* h : {&h_strain, &h_stress, &h_lateral})
+    for (double& x : *h) x *= sense;
+  const bool brazilian =
+      cfg.tessellation.outline.kind == geometry::OutlineKind::disc && !cfg.specimen_file;
+  // A disc's platen stress and strain define no Young's modulus: none is reported.
+  const auto ec = brazilian ? measure::ElasticConstants{}
+                            : measure::elastic_constants(h_strain, h_stress, h_lateral);
   summary.peak_stress = peak;
+  // Brazilian test (disc between platens): sigma_t = 2 F / (pi D t), and the axial stress is
+  // F / (D t). Direct tension: the largest pull.
+  if (brazilian)
+    summary.tensile_strength = 2.0 / M_PI * peak;
+  else if (trough < 0)
+    summary.tensile_strength = -trough;
+  summary.failure_stages = measure::failure_stages(h_strain, h_stress, h_failure);
+  summary.cycles = measure::cycle_measures(rows, stages, stalled);
+  if (!summary.cycles.empty()) write_cycles(options.out / "cycles.csv", summary.cycles);
   summary.youngs_modulus = ec.youngs_modulus;
   summary.poisson_ratio = ec.poisson_ratio;
   summary.steps = solver.steps();

@@ -101,12 +101,45 @@ void read_specimen(TomlSection sec, ModelConfig& cfg) {
   sec.finish();
 }
 
-loading::Stage read_stage(TomlSection sec, std::size_t index) {
+loading::CyclicBlock read_cycles(TomlSection& sec, const std::string& name) {
+  loading::CyclicBlock b;
+  b.name = name;
+  if (sec.has("upper_stresses")) {
+    b.upper_stresses = sec.numbers("upper_stresses");
+    for (double u : b.upper_stresses)
+      if (!(u > 0)) sec.fail("upper_stresses", "every upper stress must be > 0 Pa");
+  } else {
+    const double peak = sec.positive("reference_peak", laws::required);
+    const double first = sec.positive("first_upper_fraction", laws::required);
+    const double step = sec.non_negative("upper_increment_fraction", laws::required);
+    const long n = sec.integer("cycles", 0, 1);
+    if (n < 1) sec.fail("cycles", "required key is missing (number of cycles, >= 1)");
+    for (long k = 0; k < n; ++k)
+      b.upper_stresses.push_back(peak * (first + step * static_cast<double>(k)));
+  }
+  b.lower_stress = sec.non_negative("lower_stress", 0.0);
+  for (double u : b.upper_stresses)
+    if (u <= b.lower_stress) sec.fail("lower_stress", "must lie below every upper stress");
+  b.loading_velocity = sec.positive("platen_velocity", laws::required);
+  b.unloading_rate = sec.positive("unloading_rate", laws::required);
+  b.ramp_time = sec.non_negative("ramp_time", 0.0);
+  b.servo_velocity_cap = sec.positive("servo_velocity_cap", 0.05);
+  return b;
+}
+
+// One [[stage]] table: a single stage, or a cyclic block expanded into its stages.
+void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>& stages) {
   loading::Stage st;
   const std::string fallback = fmt::format("stage {}", index + 1);
-  st.name = sec.string("name", &fallback);
   const std::string vel = "platen_velocity";
   const std::string control = sec.string("control", &vel);
+  if (control == "cyclic") {
+    const std::string cycle = "cycle";
+    loading::append_cycles(read_cycles(sec, sec.string("name", &cycle)), stages);
+    sec.finish();
+    return;
+  }
+  st.name = sec.string("name", &fallback);
   if (control == "platen_velocity") {
     st.control = loading::Control::platen_velocity;
     st.platen_velocity = sec.number("platen_velocity", laws::required);
@@ -114,9 +147,15 @@ loading::Stage read_stage(TomlSection sec, std::size_t index) {
     st.control = loading::Control::axial_stress;
     st.target_stress = sec.non_negative("target_stress", laws::required);
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
+  } else if (control == "stress_rate") {
+    st.control = loading::Control::stress_rate;
+    st.stress_rate = sec.number("stress_rate", laws::required);
+    if (st.stress_rate == 0) sec.fail("stress_rate", "must not be 0");
+    st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
   } else {
-    sec.fail("control",
-             fmt::format("must be \"platen_velocity\" or \"axial_stress\" (got \"{}\")", control));
+    sec.fail("control", fmt::format("must be \"platen_velocity\", \"axial_stress\", "
+                                    "\"stress_rate\" or \"cyclic\" (got \"{}\")",
+                                    control));
   }
   st.ramp_time = sec.non_negative("ramp_time", 0.0);
   const double nan = loading::StageEnd::unset;
@@ -127,14 +166,19 @@ loading::Stage read_stage(TomlSection sec, std::size_t index) {
       sec.fail("end_post_peak_fraction", "must be between 0 and 1");
   }
   st.end.duration = sec.has("end_time") ? sec.positive("end_time", nan) : nan;
+  st.end.axial_stress = sec.has("end_axial_stress") ? sec.number("end_axial_stress", nan) : nan;
+  if (st.control == loading::Control::stress_rate && std::isnan(st.end.axial_stress) &&
+      std::isnan(st.end.duration))
+    sec.fail("end_axial_stress", "a stress_rate stage needs end_axial_stress or end_time");
   if (std::isnan(st.end.axial_strain) && std::isnan(st.end.post_peak_fraction) &&
-      std::isnan(st.end.duration) && st.control == loading::Control::platen_velocity)
-    sec.fail(
-        "end_axial_strain",
-        "a stage needs an end condition: end_axial_strain, end_post_peak_fraction or end_time");
+      std::isnan(st.end.duration) && std::isnan(st.end.axial_stress) &&
+      st.control == loading::Control::platen_velocity)
+    sec.fail("end_axial_strain",
+             "a stage needs an end condition: end_axial_strain, end_post_peak_fraction, "
+             "end_axial_stress or end_time");
   if (st.control == loading::Control::axial_stress) st.end.stress = st.target_stress;
   sec.finish();
-  return st;
+  stages.push_back(st);
 }
 
 }  // namespace
@@ -174,13 +218,29 @@ ModelConfig read_model_file(const std::filesystem::path& file) {
     cfg.platens.params["jkn"] = model::Distribution::constant(p.positive("jkn", jkn_mean));
     cfg.platens.params["friction"] = model::Distribution::constant(p.non_negative("friction", 0.0));
     if (cfg.platens.params["friction"].value >= 90) p.fail("friction", "must be < 90 deg");
+    for (const char* k : {"jks", "tension", "cohesion", "dilation"})
+      cfg.platens.params[k] = model::Distribution::constant(0.0);
+    // Bonded platens glue to the specimen (direct tension): stronger than any joint by default.
+    cfg.platens_bonded = p.boolean("bonded", false);
+    if (cfg.platens_bonded) {
+      const double jks_mean =
+          cfg.joints.params.count("jks") ? cfg.joints.params.at("jks").mean() : 0;
+      const auto strongest = [&](const char* k) {
+        return cfg.joints.params.count(k) ? 100.0 * cfg.joints.params.at(k).mean() : 0.0;
+      };
+      cfg.platens.params["jks"] = model::Distribution::constant(p.positive("jks", jks_mean));
+      cfg.platens.params["tension"] =
+          model::Distribution::constant(p.positive("tension", strongest("tension")));
+      cfg.platens.params["cohesion"] =
+          model::Distribution::constant(p.positive("cohesion", strongest("cohesion")));
+    }
     p.finish();
   } else {
     cfg.platens.params["jkn"] = model::Distribution::constant(jkn_mean);
     cfg.platens.params["friction"] = model::Distribution::constant(0.0);
+    for (const char* k : {"jks", "tension", "cohesion", "dilation"})
+      cfg.platens.params[k] = model::Distribution::constant(0.0);
   }
-  for (const char* k : {"jks", "tension", "cohesion", "dilation"})
-    cfg.platens.params[k] = model::Distribution::constant(0.0);
 
   static const toml::table no_table;
   TomlSection contact =
@@ -220,8 +280,8 @@ ModelConfig read_model_file(const std::filesystem::path& file) {
     top.fail("stage", "at least one [[stage]] table is required");
   const toml::array& list = *stages->as_array();
   for (std::size_t i = 0; i < list.size(); ++i)
-    cfg.load_path.stages.push_back(read_stage(
-        TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), file.string()), i));
+    read_stages(TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), file.string()), i,
+                cfg.load_path.stages);
 
   if (top.has("output")) {
     TomlSection o = top.sub("output");

@@ -91,6 +91,29 @@ std::string TomlSection::string(std::string_view key, const std::string* fallbac
   return *v;
 }
 
+bool TomlSection::boolean(std::string_view key, bool fallback) {
+  const toml::node* n = node(key);
+  if (!n) return fallback;
+  const auto v = n->value_exact<bool>();
+  if (!v) fail(key, "must be true or false");
+  return *v;
+}
+
+std::vector<double> TomlSection::numbers(std::string_view key) {
+  const toml::node* n = node(key);
+  if (!n) fail(key, "required key is missing");
+  const toml::array* a = n->as_array();
+  if (!a || a->empty()) fail(key, "must be a non-empty array of numbers");
+  std::vector<double> out;
+  for (const toml::node& e : *a) {
+    const auto v = e.value<double>();
+    if (!e.is_number() || !v || !std::isfinite(*v))
+      fail_at(&e, key, "must hold finite numbers only");
+    out.push_back(*v);
+  }
+  return out;
+}
+
 TomlSection TomlSection::sub(std::string_view key) {
   const toml::node* n = node(key);
   if (!n) fail(key, "required table is missing");

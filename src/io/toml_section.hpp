@@ -5,6 +5,7 @@
 
 #include <set>
 #include <string>
+#include <vector>
 
 #include "vorodec/io/model_file.hpp"
 
@@ -20,8 +21,10 @@ class TomlSection {
   double non_negative(std::string_view key, double fallback);
   long integer(std::string_view key, long fallback, long min);
   std::string string(std::string_view key, const std::string* fallback);
-  const toml::node* node(std::string_view key);  // marks used; nullptr if absent
-  TomlSection sub(std::string_view key);         // a required sub-table
+  bool boolean(std::string_view key, bool fallback);
+  std::vector<double> numbers(std::string_view key);  // a required non-empty array of numbers
+  const toml::node* node(std::string_view key);       // marks used; nullptr if absent
+  TomlSection sub(std::string_view key);              // a required sub-table
 
   // Throws for any key that was never asked for (with a "did you mean" hint).
   void finish() const;

@@ -261,8 +261,8 @@ DetectionStats ContactDetector::detect(model::Model& model,
         c.law = static_cast<std::uint16_t>(law);
         // Bonds join blocks that share an edge (gap zero up to round-off); blocks that only
         // approach each other at a vertex get an unbonded, frictional contact.
-        c.bonded = bond_new && bl.group[a] == model::Group::specimen &&
-                   bl.group[b] == model::Group::specimen && std::abs(f.gap) <= 1e-3 * d;
+        c.bonded =
+            bond_new && table_.bonds(bl.group[a], bl.group[b]) && std::abs(f.gap) <= 1e-3 * d;
         fresh.push_back({c, f.point});
       }
     }

@@ -32,8 +32,12 @@ Solver::Solver(model::Model& model, std::vector<std::unique_ptr<laws::LawGroup>>
 void Solver::initialise() {
   detect(true);
   initial_bonded_ = static_cast<std::size_t>(
-      std::count_if(model_.contacts.begin(), model_.contacts.end(),
-                    [](const model::Contact& c) { return c.bonded != 0; }));
+      std::count_if(model_.contacts.begin(), model_.contacts.end(), [&](const model::Contact& c) {
+        // Bonds to platens (direct tension) are load transfer, not rock: not counted.
+        const auto& g = model_.blocks.group;
+        return c.bonded != 0 && g[static_cast<std::size_t>(c.a)] == model::Group::specimen &&
+               g[static_cast<std::size_t>(c.b)] == model::Group::specimen;
+      }));
 }
 
 void Solver::detect(bool bond_new) {

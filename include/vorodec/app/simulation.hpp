@@ -3,9 +3,12 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/io/model_file.hpp"
+#include "vorodec/measure/cycles.hpp"
+#include "vorodec/measure/failure_stages.hpp"
 #include "vorodec/model/model.hpp"
 #include "vorodec/solver/solver.hpp"
 
@@ -31,8 +34,11 @@ struct RunOptions {
 struct RunSummary {
   int exit_code = 0;  // 0 finished, 3 stopped unstable, 4 step limit of the model file reached
   std::string status;
-  double peak_stress = 0;  // Pa
+  double peak_stress = 0;       // Pa
+  double tensile_strength = 0;  // Pa: Brazilian (disc specimens) or direct tension (largest pull)
   double youngs_modulus = 0, poisson_ratio = 0;
+  measure::FailureStages failure_stages;
+  std::vector<measure::CycleMeasures> cycles;
   long steps = 0;
   double wall_seconds = 0;
   std::size_t blocks = 0, contacts = 0, cracks_tensile = 0, cracks_shear = 0;

@@ -41,6 +41,7 @@ struct ModelConfig {
   double rounding_length = 0;                          // m
   LawChoice joints;                                    // specimen block to block
   LawChoice platens;                                   // platen to specimen
+  bool platens_bonded = false;                         // glued to the specimen (direct tension)
   solver::SolverSettings solver;
   long max_steps = 0;
   loading::LoadPath load_path;

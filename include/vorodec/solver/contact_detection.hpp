@@ -13,8 +13,15 @@ namespace vorodec::solver {
 // Which law group a pair of body groups uses (-1: the pair never interacts).
 struct LawTable {
   std::array<std::array<int, 3>, 3> law{{{-1, -1, -1}, {-1, -1, -1}, {-1, -1, -1}}};
+  // Which group pairs bond where they touch in the initial state (specimen-specimen; and
+  // specimen-platen for bonded platens).
+  std::array<std::array<bool, 3>, 3> bond{
+      {{true, false, false}, {false, false, false}, {false, false, false}}};
   int for_pair(model::Group a, model::Group b) const {
     return law[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)];
+  }
+  bool bonds(model::Group a, model::Group b) const {
+    return bond[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)];
   }
 };
 

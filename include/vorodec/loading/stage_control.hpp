@@ -1,0 +1,39 @@
+#pragma once
+// One stage of a load path at run time: the top platen's velocity each step and the end judgment.
+#include "vorodec/loading/load_path.hpp"
+
+namespace vorodec::loading {
+
+// What the stage sees of the specimen after a step.
+struct StageSample {
+  double time_in_stage = 0;  // s
+  double axial_stress = 0;   // Pa, compression +
+  double axial_strain = 0;   // -, shortening +
+  bool history_row = false;  // this step writes a history row (peaks are judged on rows)
+};
+
+enum class StageOutcome { running, done, stalled };
+
+class StageControl {
+ public:
+  // v_previous: the platen velocity when the stage starts (m/s); stress and strain at its start.
+  StageControl(const Stage& stage, double v_previous, double stress0, double strain0);
+
+  // m/s, top platen, compressing +. platen_stiffness: N/m of the contacts on the top platen.
+  double platen_velocity(double time_in_stage, double axial_stress, double platen_stiffness,
+                         double dt, double width) const;
+  StageOutcome judge(const StageSample& s);
+  // 0..1, how far the stage has come (progress bar).
+  double fraction() const { return fraction_; }
+  // Servo target of a stress-controlled stage at this time (Pa).
+  double target(double time_in_stage) const;
+
+ private:
+  const Stage& st_;
+  double v0_, stress0_, strain0_;
+  double row_peak_ = 0, fraction_ = 0;
+  long rows_since_peak_ = 0, held_ = 0;
+  bool rising_ = true;  // towards end.axial_stress from below
+};
+
+}  // namespace vorodec::loading
