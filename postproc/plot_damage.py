@@ -9,7 +9,8 @@ peak axial stress) on the loading branch up to the peak, as in Fig. 8 of the mar
 Rock Mechanics and Rock Engineering); each has its own axis, so the small pre-peak D_Ma shows.
 Right: both against axial strain through the post-peak branch, each on its own axis, with the
 stress-strain curve on a third (the marble paper's Fig. 6 a-b), so the four stages (elastic,
-stable crack growth, accelerating crack growth, post-peak) can be read off.
+stable crack growth, accelerating crack growth, post-peak) can be read off. In a cyclic run the
+unloading and reloading branches are drawn as well: the damage stays flat along them.
 Needs the columns axial_strain, axial_stress, failure_rate and damage_density.
 Default output: <csv folder>/damage.png.
 

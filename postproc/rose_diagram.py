@@ -91,6 +91,7 @@ def draw(path, out, most):
         ax.set_title("%s, t = %.4g s\n%s\nP21 = %.3g 1/m" % (
             stages[i], d["time"][i], state, tensile[i].sum() + shear[i].sum()), fontsize=8)
         ax.set_thetagrids(range(0, 360, 30))
+        ax.set_ylim(0, 1.05 * (t2 + s2).max() or 1.0)  # an empty rose starts at 0 too
         ax.set_rlabel_position(0)  # along 0 degrees, where horizontal cracks are rare
         ax.yaxis.set_major_locator(MaxNLocator(4))
         ax.tick_params(labelsize=6)
