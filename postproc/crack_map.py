@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Draws the blocks and cracks of one frame of a vorodec ParaView series as a PNG.
 
-Usage: postproc/crack_map.py results/ucs_marble [-o out.png] [--frame N]
+Usage: postproc/crack_map.py results/ucs_marble [-o out.png] [--frame N] [--shade ARRAY]
        postproc/crack_map.py results/ucs_marble/blocks.pvd ...
 
-Reads blocks.pvd and cracks.pvd of the folder and draws the last frame (or frame N, negative
-counts from the end): blocks as light grey polygons with thin edges, cracks red = tensile,
-blue = shear. Only matplotlib and VTK's XML reader are used, so no X server is needed.
-Default output: <folder>/crack_map.png.
+Reads blocks.pvd and cracks.pvd of the folder (or of its vtk/ subfolder) and draws the last frame
+(or frame N, negative counts from the end): blocks as light grey polygons with thin edges, cracks red = tensile,
+blue = shear. --shade failed_fraction (or any other scalar block cell array) shades the blocks in
+greys by that array instead, with a colour bar: failed_fraction is the fraction of each block's
+initial bonded contacts that have failed. Only matplotlib and VTK's XML reader are used, so no X
+server is needed. Default output: <folder>/crack_map.png.
 
 Needs Debian's /usr/bin/python3 with python3-vtk9, python3-numpy and python3-matplotlib.
 """
@@ -71,7 +73,7 @@ def cell_array(pd, name):
     return None if a is None else vtk_to_numpy(a)
 
 
-def draw(folder, frame, out):
+def draw(folder, frame, out, shade=None):
     blocks = read_pvd(os.path.join(folder, "blocks.pvd"))
     t, blocks_vtp = blocks[frame]
     cracks_vtp = None
@@ -94,7 +96,18 @@ def draw(folder, frame, out):
     w, h = (7.5, 7.5 * aspect) if aspect <= 1.0 else (7.5 / aspect, 7.5)
     fig, ax = plt.subplots(figsize=(w + 1.3, h + 1.0), dpi=200)
     edge_lw = float(np.clip(8.0 / np.sqrt(max(nblocks, 1)), 0.1, 0.8))
-    ax.add_collection(PolyCollection(polys, facecolors="0.85", edgecolors="0.45", linewidths=edge_lw))
+    if shade is None:
+        ax.add_collection(PolyCollection(polys, facecolors="0.85", edgecolors="0.45",
+                                         linewidths=edge_lw))
+    else:
+        values = cell_array(bpd, shade)
+        if values is None or values.ndim != 1:
+            raise ValueError("%s has no scalar block cell array %r" % (blocks_vtp, shade))
+        pc = PolyCollection(polys, array=values, cmap="Greys", edgecolors="0.55",
+                            linewidths=edge_lw)
+        pc.set_clim(0.0, max(float(values.max()), 1e-12))
+        ax.add_collection(pc)
+        fig.colorbar(pc, ax=ax, shrink=0.6, pad=0.02, label=shade)
 
     counts = {}
     if cracks_vtp is not None:
@@ -123,6 +136,8 @@ def draw(folder, frame, out):
                for l, c in CRACK_STYLE.values()]
     ax.legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.9)
     name = os.path.basename(os.path.abspath(folder))
+    if name == "vtk":  # the series folder of a run: name the run
+        name = os.path.basename(os.path.dirname(os.path.abspath(folder)))
     ax.set_title("%s: %d blocks, t = %.6g s" % (name, nblocks, t))
     fig.tight_layout()
     fig.savefig(out)
@@ -132,14 +147,21 @@ def draw(folder, frame, out):
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("series", help="result folder holding blocks.pvd and cracks.pvd, or blocks.pvd")
+    p.add_argument("series", help="result folder (or its vtk/ folder) holding blocks.pvd and "
+                   "cracks.pvd, or blocks.pvd")
     p.add_argument("-o", "--output", help="PNG to write (default: <folder>/crack_map.png)")
     p.add_argument("--frame", type=int, default=-1, help="frame index, negative from the end")
+    p.add_argument("--shade", metavar="ARRAY",
+                   help="shade blocks by this block cell array, e.g. failed_fraction")
     args = p.parse_args(argv)
     folder = args.series if os.path.isdir(args.series) else os.path.dirname(os.path.abspath(args.series))
     out = args.output or os.path.join(folder, "crack_map.png")
+    # A run's results folder keeps its series in vtk/.
+    if not os.path.isfile(os.path.join(folder, "blocks.pvd")) and os.path.isfile(
+            os.path.join(folder, "vtk", "blocks.pvd")):
+        folder = os.path.join(folder, "vtk")
     try:
-        t, nblocks, counts = draw(folder, args.frame, out)
+        t, nblocks, counts = draw(folder, args.frame, out, args.shade)
     except (OSError, ValueError, IndexError, ET.ParseError) as e:
         print("crack_map: %s" % e, file=sys.stderr)
         return 1

@@ -2,8 +2,11 @@
 
 Run with ParaView's pvbatch (not plain python), normally through tests/run_paraview_check.sh:
     pvbatch tests/paraview_check.py results/run/blocks.pvd out.png [cell_array]
-cell_array defaults to displacement, id, type or state, whichever the series has first.
-Exits non-zero on any failure and prints the times it visited.
+    pvbatch tests/paraview_check.py results/run/damage.pvd out.png damage_density
+The series may hold polygon data (.vtp: blocks, contacts, cracks) or image data (.vti: the damage
+grid); ParaView must report the data set type the file extension promises.
+cell_array defaults to displacement, id, type, state or damage_density, whichever the series has
+first. Exits non-zero on any failure and prints the times it visited.
 """
 import os
 import sys
@@ -15,6 +18,9 @@ def fail(msg):
     sys.exit(1)
 
 
+EXPECTED_TYPE = {".vtp": "vtkPolyData", ".vti": "vtkImageData"}
+
+
 def pvd_times(pvd):
     try:
         root = ET.parse(pvd).getroot()
@@ -22,13 +28,16 @@ def pvd_times(pvd):
         fail("cannot parse %s: %s" % (pvd, e))
     if root.get("type") != "Collection":
         fail("%s is not a VTK Collection file" % pvd)
-    times = []
+    times, exts = [], set()
     for ds in root.iter("DataSet"):
         f = os.path.join(os.path.dirname(pvd), ds.get("file", ""))
         if not os.path.isfile(f):
             fail("%s lists missing file %s" % (pvd, f))
         times.append(float(ds.get("timestep")))
-    return times
+        exts.add(os.path.splitext(f)[1])
+    if len(exts) > 1:
+        fail("%s mixes file types %r" % (pvd, sorted(exts)))
+    return times, (exts.pop() if exts else "")
 
 
 def main(argv):
@@ -36,7 +45,7 @@ def main(argv):
         fail("usage: pvbatch paraview_check.py file.pvd out.png [cell_array]")
     pvd, png = os.path.abspath(argv[1]), os.path.abspath(argv[2])
     wanted = argv[3] if len(argv) > 3 else None
-    expected = pvd_times(pvd)
+    expected, ext = pvd_times(pvd)
     if not expected:
         fail("%s lists no data sets" % pvd)
 
@@ -53,12 +62,20 @@ def main(argv):
         reader.UpdatePipeline(t)
         info = reader.GetDataInformation()
         ncells, npoints = info.GetNumberOfCells(), info.GetNumberOfPoints()
-        print("paraview_check: t=%.17g cells=%d points=%d" % (t, ncells, npoints), flush=True)
+        vtk_info = getattr(info, "DataInformation", info)
+        dtype = vtk_info.GetDataSetTypeAsString()
+        print("paraview_check: t=%.17g %s cells=%d points=%d" % (t, dtype, ncells, npoints),
+              flush=True)
+        if ext in EXPECTED_TYPE and dtype != EXPECTED_TYPE[ext]:
+            fail("a %s series reads as %s, expected %s" % (ext, dtype, EXPECTED_TYPE[ext]))
+        if ext == ".vti" and ncells == 0:
+            fail("image data without cells at t=%.17g" % t)
         visited.append(t)
 
     arrays = list(reader.CellData.keys())
     if wanted is None:
-        preferred = [a for a in ("displacement", "id", "type", "state") if a in arrays]
+        preferred = [a for a in ("displacement", "id", "type", "state", "damage_density")
+                     if a in arrays]
         if not preferred and not arrays:
             fail("no cell arrays in %s" % pvd)
         wanted = (preferred or arrays)[0]

@@ -2,7 +2,8 @@
 # Opens a .pvd series in ParaView's pvbatch under Xvfb (tests/paraview_check.py): every time step is
 # loaded, the last one is coloured by a cell array and saved as a PNG.
 #
-#   tests/run_paraview_check.sh results/run/blocks.pvd [out.png] [cell_array]
+#   tests/run_paraview_check.sh results/run/vtk/blocks.pvd [out.png] [cell_array]
+#   tests/run_paraview_check.sh results/run/vtk/damage.pvd [out.png] damage_density   (.vti series)
 #
 # Debian's python3-paraview conflicts with python3-vtk9 (needed by libvtk9-dev), so it is not
 # installed: its .deb is fetched with `apt-get download` (matching the installed paraview version)

@@ -108,6 +108,13 @@ TEST(BadInput, ZeroWeibullShapeIsRejected) {
       "joints.tension.weibull_shape", 11, "must be > 0"));
 }
 
+TEST(BadInput, NonPositiveDamageGridCellIsRejected) {
+  EXPECT_TRUE(rejected("damage_grid_cell",
+                       replace(good_model, "end_axial_strain = 0.001",
+                               "end_axial_strain = 0.001\n[output]\ndamage_grid_cell = 0"),
+                       "output.damage_grid_cell", 18, "must be > 0"));
+}
+
 TEST(BadInput, MissingRequiredKeyIsNamed) {
   EXPECT_TRUE(rejected("missing_density", replace(good_model, "density = 2600", ""),
                        "blocks.density", 6, "required key is missing"));

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 #include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
+#include <vtkXMLImageDataReader.h>
 #include <vtkXMLPolyDataReader.h>
 
 #include <cmath>
@@ -46,8 +49,8 @@ int EndToEnd::run_code_ = -1;
 TEST_F(EndToEnd, RunReachesPostPeakAndWritesEveryOutput) {
   ASSERT_EQ(run_code_, 0);
   const fs::path out = base_dir() / "one";
-  for (const char* f : {"history.csv", "summary.json", "cracks.csv", "vtk/blocks.pvd",
-                        "vtk/contacts.pvd", "vtk/cracks.pvd"})
+  for (const char* f : {"history.csv", "summary.json", "cracks.csv", "rose.csv", "vtk/blocks.pvd",
+                        "vtk/contacts.pvd", "vtk/cracks.pvd", "vtk/damage.pvd"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const auto rows = read_csv(out / "history.csv");
   const double peak = peak_of(rows);
@@ -113,6 +116,67 @@ TEST_F(EndToEnd, PreparedSpecimenReproducesTheRunBitForBit) {
   const auto b = read_csv(again / "history.csv");
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "row " << i;
+}
+
+// Columns of history.csv: 6, 7 cracks, 8 failure_rate, 9 damage_density, 10 p21; of cracks.csv:
+// 4 length. The 0.02 x 0.04 m rectangle is tiled exactly by its blocks.
+TEST_F(EndToEnd, DamageMeasuresAgreeWithTheCrackList) {
+  ASSERT_EQ(run_code_, 0);
+  const fs::path out = base_dir() / "one";
+  const double area = 0.02 * 0.04;
+  const double tol = 1e-9;  // the CSV files hold 10 significant digits
+  const auto history = read_csv(out / "history.csv");
+  const auto cracks = read_csv(out / "cracks.csv");
+  double length = 0;
+  for (const auto& c : cracks) length += c[4];
+  const auto& last = history.back();
+  ASSERT_EQ(last[6] + last[7], static_cast<double>(cracks.size()));
+  EXPECT_NEAR(last[10], length / area, tol * length / area);
+  EXPECT_GT(last[9], 0.0);  // post-peak: failed contacts have opened
+  EXPECT_LT(last[9], 1.0);
+  for (std::size_t i = 1; i < history.size(); ++i)
+    ASSERT_GE(history[i][10], history[i - 1][10]) << "P21 never falls, row " << i;
+
+  // rose.csv: time, axial_stress, p21, p21_tensile, p21_shear, 18 bins each of all, tensile, shear.
+  const auto rose = read_csv(out / "rose.csv");
+  ASSERT_GE(rose.size(), 2u);
+  const auto& r = rose.back();
+  ASSERT_EQ(r.size(), 5u + 3u * 18u);
+  double bins = 0, tensile = 0, shear = 0;
+  for (std::size_t k = 0; k < 18; ++k) {
+    bins += r[5 + k];
+    tensile += r[23 + k];
+    shear += r[41 + k];
+    EXPECT_NEAR(r[5 + k], r[23 + k] + r[41 + k], tol * r[2]) << "bin " << k;
+  }
+  EXPECT_NEAR(r[2], last[10], tol * r[2]);
+  EXPECT_NEAR(bins, r[2], tol * r[2]);
+  EXPECT_NEAR(tensile, r[3], tol * r[2]);
+  EXPECT_NEAR(shear, r[4], tol * r[2]);
+
+  // The last damage grid: cell P21 x cell specimen area sums to the crack length.
+  std::size_t frames = 0;
+  for (const auto& e : fs::directory_iterator(out / "vtk"))
+    frames += e.path().extension() == ".vti";
+  ASSERT_EQ(frames, rose.size());
+  char name[32];
+  std::snprintf(name, sizeof name, "damage_%06zu.vti", frames - 1);
+  vtkNew<vtkXMLImageDataReader> grid;
+  grid->SetFileName((out / "vtk" / name).string().c_str());
+  grid->Update();
+  vtkImageData* img = grid->GetOutput();
+  vtkDataArray* p21 = img->GetCellData()->GetArray("p21");
+  vtkDataArray* cell_area = img->GetCellData()->GetArray("specimen_area");
+  ASSERT_NE(p21, nullptr);
+  ASSERT_NE(cell_area, nullptr);
+  ASSERT_NE(img->GetCellData()->GetArray("damage_density"), nullptr);
+  double grid_length = 0, grid_area = 0;
+  for (vtkIdType k = 0; k < img->GetNumberOfCells(); ++k) {
+    grid_length += p21->GetTuple1(k) * cell_area->GetTuple1(k);
+    grid_area += cell_area->GetTuple1(k);
+  }
+  EXPECT_NEAR(grid_area, area, 1e-12 * area);
+  EXPECT_NEAR(grid_length, length, tol * length);
 }
 
 // Regression against tests/reference/e2e_small_history.csv (regenerate:

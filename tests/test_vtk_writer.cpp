@@ -9,10 +9,12 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkIdList.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkXMLImageDataReader.h>
 #include <vtkXMLPolyDataReader.h>
 
 #include <cstdlib>
@@ -30,6 +32,7 @@ namespace {
 namespace fs = std::filesystem;
 using vorodec::geometry::Point;
 using vorodec::io::VtkFrame;
+using vorodec::io::VtkGrid;
 using vorodec::io::VtkSeriesWriter;
 
 fs::path output_root() {
@@ -313,6 +316,79 @@ TEST(VtkSeriesWriter, RejectsFrameWithInconsistentArraySizesAndWritesNothing) {
   EXPECT_EQ(writer.frames(), 0u);
   EXPECT_FALSE(fs::exists(dir / "blocks_000000.vtp"));
   EXPECT_FALSE(fs::exists(dir / "blocks.pvd"));
+}
+
+// A frame with damage fields: each block's failed fraction and a 3 x 2 grid of 0.5 m cells.
+VtkFrame damage_frame(int k) {
+  VtkFrame f = synthetic_frame(k);
+  f.block_failed_fraction = {0.25 * k, 0.5};
+  f.grid = VtkGrid{{-0.5, 0.25}, 0.5, 3, 2, {}};
+  f.grid.fields = {{"p21", {1, 2, 3, 4, 5, 6.5 + k}}, {"damage_density", {0, 0, 0.1, 0, 0, 0.2}}};
+  return f;
+}
+
+TEST(VtkSeriesWriter, DamageGridIsAnImageDataSeriesWithCellFields) {
+  const fs::path dir = fresh_dir("damage");
+  VtkSeriesWriter writer(dir);
+  for (int k = 0; k < 2; ++k) writer.write(damage_frame(k));
+  const auto entries = parse_pvd(dir / "damage.pvd");
+  ASSERT_EQ(entries.size(), 2u);
+  EXPECT_EQ(entries[1].time, kTimes[1]);
+  EXPECT_EQ(entries[1].file, "damage_000001.vti");
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName((dir / "damage_000001.vti").string().c_str());
+  reader->Update();
+  ASSERT_EQ(reader->GetErrorCode(), 0);
+  vtkImageData* img = reader->GetOutput();
+  int dims[3];
+  img->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 4);
+  EXPECT_EQ(dims[1], 3);
+  EXPECT_EQ(dims[2], 1);
+  EXPECT_EQ(img->GetNumberOfCells(), 6);
+  double origin[3], spacing[3];
+  img->GetOrigin(origin);
+  img->GetSpacing(spacing);
+  EXPECT_EQ(origin[0], -0.5);
+  EXPECT_EQ(origin[1], 0.25);
+  EXPECT_EQ(spacing[0], 0.5);
+  EXPECT_EQ(spacing[1], 0.5);
+  vtkDataArray* p21 = img->GetCellData()->GetArray("p21");
+  ASSERT_NE(p21, nullptr);
+  EXPECT_EQ(p21->GetTuple1(5), 7.5);
+  // Cell (i, j) = (2, 0) is entry 2: the cell whose centre is (0.75, 0.5).
+  double centre[3] = {0.75, 0.5, 0.0}, pcoords[3], weights[8];
+  int sub = 0;
+  EXPECT_EQ(img->FindCell(centre, nullptr, -1, 1e-9, sub, pcoords, weights), 2);
+  ASSERT_NE(img->GetCellData()->GetArray("damage_density"), nullptr);
+  EXPECT_EQ(img->GetCellData()->GetArray("damage_density")->GetTuple1(2), 0.1);
+  auto blocks = read_vtp(dir / "blocks_000001.vtp");
+  vtkDataArray* fraction = blocks->GetCellData()->GetArray("failed_fraction");
+  ASSERT_NE(fraction, nullptr);
+  EXPECT_EQ(fraction->GetTuple1(0), 0.25);
+  EXPECT_EQ(fraction->GetTuple1(1), 0.5);
+}
+
+TEST(VtkSeriesWriter, SeriesWithoutGridWritesNoDamageFiles) {
+  const fs::path dir = fresh_dir("no_grid");
+  VtkSeriesWriter writer(dir);
+  writer.write(synthetic_frame(0));
+  EXPECT_FALSE(fs::exists(dir / "damage.pvd"));
+  EXPECT_FALSE(fs::exists(dir / "damage_000000.vti"));
+  EXPECT_EQ(read_vtp(dir / "blocks_000000.vtp")->GetCellData()->GetArray("failed_fraction"),
+            nullptr);
+}
+
+TEST(VtkSeriesWriter, RejectsGridThatAppearsMidSeriesOrHasWrongFieldSize) {
+  const fs::path dir = fresh_dir("grid_change");
+  VtkSeriesWriter writer(dir);
+  writer.write(synthetic_frame(0));
+  EXPECT_THROW(writer.write(damage_frame(1)), std::invalid_argument);
+  EXPECT_EQ(writer.frames(), 1u);
+  VtkSeriesWriter other(fresh_dir("grid_size"));
+  VtkFrame f = damage_frame(0);
+  f.grid.fields[0].values.pop_back();
+  EXPECT_THROW(other.write(f), std::invalid_argument);
 }
 
 }  // namespace

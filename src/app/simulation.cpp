@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "damage_output.hpp"
 #include "progress.hpp"
 #include "vorodec/io/csv_writer.hpp"
 #include "vorodec/io/specimen_file.hpp"
@@ -15,6 +16,7 @@
 #include "vorodec/loading/boundary.hpp"
 #include "vorodec/loading/stage_control.hpp"
 #include "vorodec/measure/cycles.hpp"
+#include "vorodec/measure/damage.hpp"
 #include "vorodec/measure/failure_stages.hpp"
 #include "vorodec/measure/specimen.hpp"
 #include "vorodec/model/build.hpp"
@@ -112,11 +114,8 @@ void write_cracks(const std::filesystem::path& file, const std::vector<laws::Cra
                                         "length", "block_a", "block_b", "type"};
   io::CsvWriter csv(file, header);
   for (const auto& e : cracks) {
-    // Orientation of the crack (joint) line, 0-180 degrees from the x axis.
-    double ang = std::atan2(e.nx, -e.ny) * 180.0 / M_PI;
-    if (ang < 0) ang += 180.0;
-    if (ang >= 180.0) ang -= 180.0;
-    const double v[] = {e.time, e.x, e.y, ang, e.length, double(e.a), double(e.b)};
+    const double v[] = {e.time,   e.x,         e.y,        measure::crack_orientation_deg(e),
+                        e.length, double(e.a), double(e.b)};
     csv.row(v, e.type == laws::ContactEvent::tensile_failure ? "tensile" : "shear");
   }
 }
@@ -207,6 +206,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
                                         "cracks_tensile",
                                         "cracks_shear",
                                         "failure_rate",
+                                        "damage_density",
+                                        "p21",
                                         "boundary_work",
                                         "strain_energy",
                                         "kinetic_energy",
@@ -217,6 +218,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   io::CsvWriter history(options.out / "history.csv", header);
   std::unique_ptr<io::VtkSeriesWriter> vtk;
   if (options.write_vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options.out / "vtk");
+  DamageOutput damage(model, cfg.output.damage_grid_cell, options.out);
 
   std::vector<double> h_strain, h_stress, h_lateral, h_failure;
   std::vector<measure::HistoryPoint> rows;
@@ -232,6 +234,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
     count_cracks();
     const auto& e = solver.energy();
     const double broken = double(n_tensile + n_shear);
+    const measure::DamageState dmg = damage.measure(model, solver);
     const double row[] = {
         double(solver.steps()),
         solver.time(),
@@ -242,6 +245,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         double(n_tensile),
         double(n_shear),
         solver.initial_bonded_contacts() ? broken / double(solver.initial_bonded_contacts()) : 0.0,
+        dmg.damage_density,
+        dmg.p21,
         e.boundary_work,
         solver.contact_strain_energy(),
         solver.kinetic_energy(),
@@ -254,6 +259,13 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
     h_lateral.push_back(state.lateral_strain);
     h_failure.push_back(row[8]);
     rows.push_back({state.axial_strain, state.axial_stress, state.lateral_strain, current_stage});
+  };
+  // A VTK output time: rose.csv row always, VTK frame (with the damage fields) unless --no-vtk.
+  const auto output_frame = [&](const std::string& stage) {
+    io::VtkFrame frame;
+    if (vtk) frame = make_frame(model, solver);
+    damage.output_time(model, solver, stage, state.axial_stress, vtk ? &frame : nullptr);
+    if (vtk) vtk->write(frame);
   };
 
   RunSummary summary;
@@ -300,8 +312,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         trough = std::min(trough, state.axial_stress);
         const bool row = solver.steps() % cfg.output.history_steps == 0;
         if (row) record(st.name);
-        if (vtk && solver.steps() % cfg.output.vtk_steps == 0)
-          vtk->write(make_frame(model, solver));
+        if (solver.steps() % cfg.output.vtk_steps == 0) output_frame(st.name);
         const loading::StageOutcome outcome =
             control.judge({solver.time() - t0, state.axial_stress, state.axial_strain, row});
         progress.update(si, control.fraction(), state.axial_stress, peak, solver.steps());
@@ -312,7 +323,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         if (outcome != loading::StageOutcome::running) break;
       }
       record(st.name + (stalled[si] ? ":stalled" : ":end"));
-      if (vtk) vtk->write(make_frame(model, solver));
+      output_frame(st.name + (stalled[si] ? ":stalled" : ":end"));
       if (resume_at >= 0 && st.phase == loading::CyclePhase::unloading) {
         si = static_cast<std::size_t>(resume_at) - 1;
         resume_at = -1;
@@ -325,8 +336,9 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
       model.blocks.x = good_x;
       model.blocks.y = good_y;
       model.blocks.theta = good_t;
+      model.blocks.refresh_world();  // the frame and the damage measures read world positions
     }
-    if (vtk) vtk->write(make_frame(model, solver));
+    output_frame("unstable");
   }
   progress.finish();
   history.flush();

@@ -318,6 +318,8 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     TomlSection o = top.sub("output");
     cfg.output.history_steps = o.integer("history_steps", 200, 1);
     cfg.output.vtk_steps = o.integer("vtk_steps", 20000, 1);
+    if (o.has("damage_grid_cell"))
+      cfg.output.damage_grid_cell = o.positive("damage_grid_cell", laws::required);
     o.finish();
   }
   top.finish();

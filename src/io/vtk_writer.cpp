@@ -3,13 +3,16 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkType.h>
+#include <vtkXMLImageDataWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <array>
@@ -19,15 +22,18 @@
 #include <string>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 namespace vorodec::io {
 namespace {
 
 constexpr std::array<const char*, 3> kSeries = {"blocks", "contacts", "cracks"};
+constexpr const char* kGridSeries = "damage";
 
 std::string frame_file(const char* series, std::size_t frame) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%s_%06zu.vtp", series, frame);
+  std::snprintf(buf, sizeof buf, "%s_%06zu.%s", series, frame,
+                std::string(series) == kGridSeries ? "vti" : "vtp");
   return buf;
 }
 
@@ -63,6 +69,8 @@ void validate(const VtkFrame& f) {
   require_size(f.block_group.size(), nb, "block_group");
   require_size(f.block_velocity.size(), nb, "block_velocity");
   require_size(f.block_displacement.size(), nb, "block_displacement");
+  if (!f.block_failed_fraction.empty())
+    require_size(f.block_failed_fraction.size(), nb, "block_failed_fraction");
   const std::size_t nc = f.contact_point.size();
   require_size(f.contact_a.size(), nc, "contact_a");
   require_size(f.contact_b.size(), nc, "contact_b");
@@ -73,6 +81,11 @@ void validate(const VtkFrame& f) {
   require_size(f.crack_end.size(), nk, "crack_end");
   require_size(f.crack_type.size(), nk, "crack_type");
   require_size(f.crack_time.size(), nk, "crack_time");
+  const VtkGrid& g = f.grid;
+  if (g.nx > 0 && !(g.cell > 0.0))
+    throw std::invalid_argument("VtkSeriesWriter: VtkFrame::grid.cell must be positive");
+  for (const auto& field : g.fields)
+    require_size(field.values.size(), g.nx * g.ny, ("grid field " + field.name).c_str());
 }
 
 vtkNew<vtkPoints> make_points(std::size_t n) {
@@ -117,7 +130,7 @@ vtkNew<vtkDoubleArray> vector_array(const char* name, const std::vector<geometry
   return a;
 }
 
-void add_time(vtkPolyData* pd, double time) {
+void add_time(vtkDataObject* pd, double time) {
   vtkNew<vtkDoubleArray> t;
   t->SetName("TimeValue");
   t->SetNumberOfTuples(1);
@@ -145,6 +158,8 @@ vtkNew<vtkPolyData> blocks_polydata(const VtkFrame& f) {
   cd->AddArray(int_array("group", f.block_group));
   cd->AddArray(vector_array("velocity", f.block_velocity));
   cd->AddArray(vector_array("displacement", f.block_displacement));
+  if (!f.block_failed_fraction.empty())
+    cd->AddArray(double_array("failed_fraction", f.block_failed_fraction));
   add_time(pd, f.time);
   return pd;
 }
@@ -196,6 +211,32 @@ vtkNew<vtkPolyData> cracks_polydata(const VtkFrame& f) {
   return pd;
 }
 
+// A 2D image of nx x ny cells (nx + 1 by ny + 1 points) in the z = 0 plane.
+vtkNew<vtkImageData> grid_image(const VtkFrame& f) {
+  const VtkGrid& g = f.grid;
+  vtkNew<vtkImageData> img;
+  img->SetOrigin(g.origin.x, g.origin.y, 0.0);
+  img->SetSpacing(g.cell, g.cell, g.cell);
+  img->SetDimensions(static_cast<int>(g.nx + 1), static_cast<int>(g.ny + 1), 1);
+  for (const auto& field : g.fields)
+    img->GetCellData()->AddArray(double_array(field.name.c_str(), field.values));
+  add_time(img, f.time);
+  return img;
+}
+
+void write_vti(vtkImageData* img, const std::filesystem::path& file) {
+  vtkNew<vtkXMLImageDataWriter> w;
+  w->SetFileName(file.string().c_str());
+  w->SetInputData(img);
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  w->SetCompressorTypeToZLib();
+  w->SetHeaderTypeToUInt64();
+  if (w->Write() != 1 || w->GetErrorCode() != 0) {
+    throw std::runtime_error("VtkSeriesWriter: cannot write " + file.string());
+  }
+}
+
 void write_vtp(vtkPolyData* pd, const std::filesystem::path& file) {
   vtkNew<vtkXMLPolyDataWriter> w;
   w->SetFileName(file.string().c_str());
@@ -223,9 +264,16 @@ VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir) : dir_(std::move(dir
 void VtkSeriesWriter::write(const VtkFrame& frame) {
   validate(frame);
   const std::size_t n = times_.size();
+  const bool grid = frame.grid.nx > 0;
+  if (n == 0) grid_ = grid;
+  if (grid != grid_) {
+    throw std::invalid_argument(
+        "VtkSeriesWriter: every frame of a series must have a damage grid, or none");
+  }
   write_vtp(blocks_polydata(frame), dir_ / frame_file(kSeries[0], n));
   write_vtp(contacts_polydata(frame), dir_ / frame_file(kSeries[1], n));
   write_vtp(cracks_polydata(frame), dir_ / frame_file(kSeries[2], n));
+  if (grid_) write_vti(grid_image(frame), dir_ / frame_file(kGridSeries, n));
   times_.push_back(frame.time);
   write_collections();
 }
@@ -233,7 +281,9 @@ void VtkSeriesWriter::write(const VtkFrame& frame) {
 // VTK 9.1 has no PVD writer. Each collection goes to a temporary file renamed over the old one, so
 // a reader never sees a half-written .pvd.
 void VtkSeriesWriter::write_collections() const {
-  for (const char* series : kSeries) {
+  std::vector<const char*> series_list(kSeries.begin(), kSeries.end());
+  if (grid_) series_list.push_back(kGridSeries);
+  for (const char* series : series_list) {
     const auto target = dir_ / (std::string(series) + ".pvd");
     auto tmp = target;
     tmp += ".tmp";

@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -61,14 +62,26 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
     // Energy balance at the end of the run (PHYSICS section 10): boundary work against strain +
     // kinetic + damping + friction + breakage, from the last history row.
     std::ifstream hist(out / "history.csv");
-    std::string line, last;
+    std::string line, header, last;
+    std::getline(hist, header);
     while (std::getline(hist, line)) last = line;
-    std::vector<double> v;
-    for (std::size_t p = 0; p < last.size();) {
-      const auto q = last.find(',', p);
-      v.push_back(std::strtod(last.substr(p, q - p).c_str(), nullptr));
-      p = q == std::string::npos ? last.size() : q + 1;
-    }
+    const auto split = [](const std::string& text) {
+      std::vector<std::string> cells;
+      for (std::size_t p = 0; p <= text.size();) {
+        const auto q = std::min(text.find(',', p), text.size());
+        cells.push_back(text.substr(p, q - p));
+        p = q + 1;
+      }
+      return cells;
+    };
+    const std::vector<std::string> names = split(header), cells = split(last);
+    // The last row's value in the named column (columns are found by name, not position).
+    const auto column = [&](const char* name) {
+      const auto it = std::find(names.begin(), names.end(), name);
+      const auto i = static_cast<std::size_t>(it - names.begin());
+      return it != names.end() && i < cells.size() ? std::strtod(cells[i].c_str(), nullptr)
+                                                   : std::nan("");
+    };
     CaseResult e{"B1",
                  "energy balance at the end of the run (imbalance / boundary work)",
                  "boundary work = contact strain + kinetic + damping + friction + breakage",
@@ -79,8 +92,12 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
                  settings,
                  s.seconds};
     e.error = 1.0;
-    if (v.size() >= 15 && v[9] != 0) {
-      e.measured = (v[9] - (v[10] + v[11] + v[12] + v[13] + v[14])) / v[9];
+    const double work = column("boundary_work");
+    const double stored = column("strain_energy") + column("kinetic_energy") +
+                          column("damping_energy") + column("friction_energy") +
+                          column("breakage_energy");
+    if (std::isfinite(work) && std::isfinite(stored) && work != 0) {
+      e.measured = (work - stored) / work;
       e.error = std::abs(e.measured);
     }
     r.push_back(e);

@@ -41,8 +41,9 @@ struct LawChoice {
 };
 
 struct OutputSettings {
-  long history_steps = 200;  // steps between history rows
-  long vtk_steps = 20000;    // steps between VTK frames (also at stage ends)
+  long history_steps = 200;       // steps between history rows
+  long vtk_steps = 20000;         // steps between VTK frames (also at stage ends)
+  double damage_grid_cell = 0.0;  // m, cell side of the damage grid; 0: about 5 mean block sizes
 };
 
 struct ModelConfig {

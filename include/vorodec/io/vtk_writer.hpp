@@ -1,13 +1,26 @@
 #pragma once
-// ParaView output: one .vtp per output time for blocks, contacts and cracks, tied together by .pvd
-// collections. VTK stays inside src/io/vtk_writer.cpp.
+// ParaView output: one .vtp per output time for blocks, contacts and cracks (and one .vti for a
+// damage grid), tied together by .pvd collections. VTK stays inside src/io/vtk_writer.cpp.
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "vorodec/geometry/point.hpp"
 
 namespace vorodec::io {
+
+// Cell data on a regular grid of square cells (written as VTK image data).
+struct VtkGrid {
+  geometry::Point origin;  // m, lower-left corner
+  double cell = 0.0;       // m, cell side
+  std::size_t nx = 0, ny = 0;
+  struct Field {
+    std::string name;
+    std::vector<double> values;  // nx * ny, cell (i, j) at i + nx * j
+  };
+  std::vector<Field> fields;
+};
 
 // Everything a writer needs of one output time, already in world coordinates; writers never read
 // the model itself.
@@ -19,6 +32,7 @@ struct VtkFrame {
   std::vector<std::int32_t> block_id, block_group;
   std::vector<geometry::Point> block_velocity;      // m/s
   std::vector<geometry::Point> block_displacement;  // m
+  std::vector<double> block_failed_fraction;        // per block, or empty: not written
   // Contacts as line segments from block A's centroid to block B's centroid through the contact
   // point.
   std::vector<geometry::Point> contact_point;         // m
@@ -31,10 +45,13 @@ struct VtkFrame {
   std::vector<geometry::Point> crack_begin, crack_end;
   std::vector<std::int32_t> crack_type;  // 1 tensile, 2 shear
   std::vector<double> crack_time;        // s
+  // Damage grid; nx = 0: none. Either every frame of a series has one or none has.
+  VtkGrid grid;
 };
 
-// Writes <dir>/blocks_<n>.vtp, contacts_<n>.vtp, cracks_<n>.vtp per frame and rewrites
-// blocks.pvd, contacts.pvd, cracks.pvd after every frame, so an interrupted run stays readable.
+// Writes <dir>/blocks_<n>.vtp, contacts_<n>.vtp, cracks_<n>.vtp (and damage_<n>.vti when the frame
+// has a grid) per frame and rewrites blocks.pvd, contacts.pvd, cracks.pvd (damage.pvd) after every
+// frame, so an interrupted run stays readable.
 class VtkSeriesWriter {
  public:
   explicit VtkSeriesWriter(std::filesystem::path dir);
@@ -45,6 +62,7 @@ class VtkSeriesWriter {
   void write_collections() const;
   std::filesystem::path dir_;
   std::vector<double> times_;
+  bool grid_ = false;  // the series has a damage grid
 };
 
 }  // namespace vorodec::io
