@@ -1,0 +1,74 @@
+#include "model_runs.hpp"
+
+#include <fmt/format.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+namespace vorodec::verification {
+
+namespace {
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> cells;
+  for (std::size_t p = 0; p <= text.size();) {
+    const auto q = std::min(text.find(',', p), text.size());
+    cells.push_back(text.substr(p, q - p));
+    p = q + 1;
+  }
+  return cells;
+}
+}  // namespace
+
+ModelRun run_model(const std::string& binary, const std::filesystem::path& model,
+                   const std::filesystem::path& out, const std::string& args) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::filesystem::create_directories(out);
+  const std::string cmd = fmt::format("{} run {} --no-vtk --out {} {} > {}/log.txt 2>&1", binary,
+                                      model.string(), out.string(), args, out.string());
+  ModelRun r;
+  r.out = out;
+  const int status = std::system(cmd.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(out / "summary.json");
+  r.summary = {std::istreambuf_iterator<char>(in), {}};
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+double json_number(const std::string& json, const std::string& key) {
+  const std::string tag = "\"" + key + "\": ";
+  const auto pos = json.find(tag);
+  return pos == std::string::npos ? std::nan("")
+                                  : std::strtod(json.c_str() + pos + tag.size(), nullptr);
+}
+
+int Table::column(const std::string& name) const {
+  const auto it = std::find(header.begin(), header.end(), name);
+  return it == header.end() ? -1 : static_cast<int>(it - header.begin());
+}
+
+double Table::number(std::size_t row, const std::string& name) const {
+  const int c = column(name);
+  if (c < 0 || row >= rows.size() || static_cast<std::size_t>(c) >= rows[row].size())
+    return std::nan("");
+  const std::string& cell = rows[row][static_cast<std::size_t>(c)];
+  char* end = nullptr;
+  const double v = std::strtod(cell.c_str(), &end);
+  return end == cell.c_str() ? std::nan("") : v;
+}
+
+Table read_table(const std::filesystem::path& csv) {
+  Table t;
+  std::ifstream in(csv);
+  std::string line;
+  if (std::getline(in, line)) t.header = split(line);
+  while (std::getline(in, line))
+    if (!line.empty()) t.rows.push_back(split(line));
+  return t;
+}
+
+}  // namespace vorodec::verification

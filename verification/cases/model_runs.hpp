@@ -1,0 +1,34 @@
+#pragma once
+// Whole-model runs for the published cases: run the real command, read what it wrote.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace vorodec::verification {
+
+struct ModelRun {
+  std::string summary;  // summary.json text
+  double seconds = 0;   // wall time
+  int exit_code = -1;
+  std::filesystem::path out;
+};
+
+// `vorodec run MODEL --no-vtk --out OUT ARGS`, console output to OUT/log.txt.
+ModelRun run_model(const std::string& binary, const std::filesystem::path& model,
+                   const std::filesystem::path& out, const std::string& args = "");
+
+// A number in summary.json ("key": value); NaN if absent.
+double json_number(const std::string& json, const std::string& key);
+
+// A CSV file as a header and rows of cells.
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  // Index of a column by name; -1 if absent.
+  int column(const std::string& name) const;
+  // A row's value in a named column, NaN if absent or not a number.
+  double number(std::size_t row, const std::string& name) const;
+};
+Table read_table(const std::filesystem::path& csv);
+
+}  // namespace vorodec::verification
