@@ -56,3 +56,19 @@ TEST(ModelFile, MissingBaseFileIsNamedWithItsLine) {
         << e.what();
   }
 }
+
+TEST(ModelFile, MarbleModelsShareTheUcsModelsContacts) {
+  const std::string dir = std::string(VORODEC_SOURCE_DIR) + "/models/";
+  const io::ModelConfig ucs = io::read_model_file(dir + "ucs_marble.toml");
+  for (const char* other : {"brazilian_marble.toml", "tension_marble.toml", "cyclic_marble.toml",
+                            "triaxial_marble.toml"}) {
+    const io::ModelConfig m = io::read_model_file(dir + other);
+    EXPECT_EQ(m.density, ucs.density) << other;
+    EXPECT_EQ(m.rounding_length, ucs.rounding_length) << other;
+    ASSERT_EQ(m.joints.params.size(), ucs.joints.params.size()) << other;
+    for (const auto& [key, d] : ucs.joints.params) {
+      EXPECT_EQ(m.joints.params.at(key).value, d.value) << other << " " << key;
+      EXPECT_EQ(m.joints.params.at(key).weibull_shape, d.weibull_shape) << other << " " << key;
+    }
+  }
+}
