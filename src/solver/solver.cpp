@@ -142,10 +142,11 @@ void Solver::gather_forces() {
     for (std::uint32_t k = gather_begin_[b]; k < gather_begin_[b + 1]; ++k) {
       const std::uint32_t e = gather_[k];
       const model::ContactForce& f = forces_[e & ~b_side];
-      const double s = (e & b_side) ? -1.0 : 1.0;
+      const bool on_b = (e & b_side) != 0;  // selects, not branches: the side is unpredictable
+      const double s = on_b ? -1.0 : 1.0;
       fx += s * f.fx;
       fy += s * f.fy;
-      m += s * ((f.px - bl.x[b]) * f.fy - (f.py - bl.y[b]) * f.fx);
+      m += s * (on_b ? f.mb : f.ma);
     }
     cfx_[b] = fx;
     cfy_[b] = fy;

@@ -102,7 +102,9 @@ class LawGroupOf final : public LawGroup {
             c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
                                                     : model::ContactState::intact;
         }
-        forces[i] = {r.fn * f.n.x + r.fs * s.x, r.fn * f.n.y + r.fs * s.y, f.point.x, f.point.y};
+        const double fx = r.fn * f.n.x + r.fs * s.x, fy = r.fn * f.n.y + r.fs * s.y;
+        forces[i] = {fx, fy, (f.point.x - ka.x) * fy - (f.point.y - ka.y) * fx,
+                     (f.point.x - kb.x) * fy - (f.point.y - kb.y) * fx};
       }
     }
     ctx.totals.dissipated_slip += slip;
