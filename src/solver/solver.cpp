@@ -160,32 +160,42 @@ void Solver::integrate() {
   const double alpha = settings_.local_damping, dt = dt_;
   const Point g = settings_.gravity;
   double w_boundary = 0, w_body = 0, w_damp = 0;
+  // Plain pointers and locals: through the vectors every store would force reloads of the others.
+  double *x = bl.x.data(), *y = bl.y.data(), *theta = bl.theta.data();
+  double *vx = bl.vx.data(), *vy = bl.vy.data(), *omega = bl.omega.data();
+  const double *fx_applied = bl.fx.data(), *fy_applied = bl.fy.data(),
+               *m_applied = bl.moment.data();
+  const double *mass = bl.mass.data(), *inertia = bl.inertia.data();
+  const double* gravity_mass = bl.gravity_mass.data();
+  const std::uint8_t* prescribed = bl.prescribed.data();
+  const double *cfx = cfx_.data(), *cfy = cfy_.data(), *cm = cm_.data();
 #pragma omp parallel for schedule(static) reduction(+ : w_boundary, w_body, w_damp)
   for (std::int64_t bi = 0; bi < nb; ++bi) {
     const auto b = static_cast<std::size_t>(bi);
-    if (bl.prescribed[b]) {
+    double u = vx[b], v = vy[b], w = omega[b];
+    if (prescribed[b]) {
       // Work of the platen on the specimen: minus the contact force the specimen exerts on it.
-      w_boundary -= (cfx_[b] * bl.vx[b] + cfy_[b] * bl.vy[b] + cm_[b] * bl.omega[b]) * dt;
-      bl.x[b] += bl.vx[b] * dt;
-      bl.y[b] += bl.vy[b] * dt;
-      bl.theta[b] += bl.omega[b] * dt;
-      continue;
+      w_boundary -= (cfx[b] * u + cfy[b] * v + cm[b] * w) * dt;
+    } else {
+      const double fx = cfx[b] + fx_applied[b] + gravity_mass[b] * g.x;
+      const double fy = cfy[b] + fy_applied[b] + gravity_mass[b] * g.y;
+      const double mz = cm[b] + m_applied[b];
+      const double dfx = -alpha * std::abs(fx) * sign(u);
+      const double dfy = -alpha * std::abs(fy) * sign(v);
+      const double dmz = -alpha * std::abs(mz) * sign(w);
+      u += (fx + dfx) / mass[b] * dt;
+      v += (fy + dfy) / mass[b] * dt;
+      w += (mz + dmz) / inertia[b] * dt;
+      vx[b] = u;
+      vy[b] = v;
+      omega[b] = w;
+      w_damp -= (dfx * u + dfy * v + dmz * w) * dt;
+      w_boundary += (fx_applied[b] * u + fy_applied[b] * v + m_applied[b] * w) * dt;
+      w_body += gravity_mass[b] * (g.x * u + g.y * v) * dt;
     }
-    const double fx = cfx_[b] + bl.fx[b] + bl.gravity_mass[b] * g.x;
-    const double fy = cfy_[b] + bl.fy[b] + bl.gravity_mass[b] * g.y;
-    const double mz = cm_[b] + bl.moment[b];
-    const double dfx = -alpha * std::abs(fx) * sign(bl.vx[b]);
-    const double dfy = -alpha * std::abs(fy) * sign(bl.vy[b]);
-    const double dmz = -alpha * std::abs(mz) * sign(bl.omega[b]);
-    bl.vx[b] += (fx + dfx) / bl.mass[b] * dt;
-    bl.vy[b] += (fy + dfy) / bl.mass[b] * dt;
-    bl.omega[b] += (mz + dmz) / bl.inertia[b] * dt;
-    w_damp -= (dfx * bl.vx[b] + dfy * bl.vy[b] + dmz * bl.omega[b]) * dt;
-    w_boundary += (bl.fx[b] * bl.vx[b] + bl.fy[b] * bl.vy[b] + bl.moment[b] * bl.omega[b]) * dt;
-    w_body += bl.gravity_mass[b] * (g.x * bl.vx[b] + g.y * bl.vy[b]) * dt;
-    bl.x[b] += bl.vx[b] * dt;
-    bl.y[b] += bl.vy[b] * dt;
-    bl.theta[b] += bl.omega[b] * dt;
+    x[b] += u * dt;
+    y[b] += v * dt;
+    theta[b] += w * dt;
   }
   energy_.boundary_work += w_boundary;
   energy_.body_work += w_body;
