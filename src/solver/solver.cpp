@@ -25,9 +25,7 @@ Solver::Solver(model::Model& model, std::vector<std::unique_ptr<laws::LawGroup>>
     : model_(model),
       laws_(std::move(laws)),
       detector_(settings.contact_tolerance, table),
-      settings_(settings) {
-  cracks_per_thread_.resize(static_cast<std::size_t>(omp_get_max_threads()));
-}
+      settings_(settings) {}
 
 void Solver::initialise() {
   detect(true);
@@ -60,11 +58,41 @@ void Solver::detect(bool bond_new) {
     gather_[fill[static_cast<std::size_t>(model_.contacts[i].a)]++] = i;
     gather_[fill[static_cast<std::size_t>(model_.contacts[i].b)]++] = i | b_side;
   }
+  partition();
   x_detect_ = bl.x;
   y_detect_ = bl.y;
   t_detect_ = bl.theta;
   last_detection_ = steps_;
   compute_time_step();
+}
+
+void Solver::partition() {
+  chunks_ = omp_get_max_threads();
+  cracks_per_chunk_.resize(static_cast<std::size_t>(chunks_));
+  const std::size_t nb = model_.blocks.size(), nc = model_.contacts.size();
+  constexpr int none = -1, several = -2;
+  std::vector<int> part(nb, none);
+  for (std::size_t l = 0; l < laws_.size(); ++l) {
+    for (int t = 0; t < chunks_; ++t) {
+      const auto [lo, hi] = laws::chunk_range(law_begin_[l], law_begin_[l + 1], t, chunks_);
+      for (std::size_t i = lo; i < hi; ++i) {
+        for (const auto blk : {model_.contacts[i].a, model_.contacts[i].b}) {
+          int& p = part[static_cast<std::size_t>(blk)];
+          p = p == none || p == t ? t : several;
+        }
+      }
+    }
+  }
+  shared_sides_.resize(nc);
+  for (std::size_t i = 0; i < nc; ++i) {
+    const model::Contact& c = model_.contacts[i];
+    shared_sides_[i] = static_cast<std::uint8_t>(
+        (part[static_cast<std::size_t>(c.a)] == several ? laws::a_shared : 0) |
+        (part[static_cast<std::size_t>(c.b)] == several ? laws::b_shared : 0));
+  }
+  shared_blocks_.clear();
+  for (std::size_t b = 0; b < nb; ++b)
+    if (part[b] == several) shared_blocks_.push_back(static_cast<std::uint32_t>(b));
 }
 
 void Solver::compute_time_step() {
@@ -116,28 +144,40 @@ void Solver::step() {
         steps_ - last_detection_ >= settings_.max_detection_interval)
       detect(false);
   }
-  laws::StepContext ctx{
-      &bl, model_.contacts.data(), forces_.data(), &cracks_per_thread_, dt_, time_, {}};
-  for (std::size_t l = 0; l < laws_.size(); ++l)
+  if (chunks_ != omp_get_max_threads()) partition();  // the thread count changed
+  std::fill(cfx_.begin(), cfx_.end(), 0.0);
+  std::fill(cfy_.begin(), cfy_.end(), 0.0);
+  std::fill(cm_.begin(), cm_.end(), 0.0);
+  laws::StepContext ctx{&bl,
+                        model_.contacts.data(),
+                        forces_.data(),
+                        shared_sides_.data(),
+                        cfx_.data(),
+                        cfy_.data(),
+                        cm_.data(),
+                        chunks_,
+                        &cracks_per_chunk_,
+                        dt_,
+                        time_,
+                        {}};
+  for (std::size_t l = 0; l < laws_.size(); ++l) {
     laws_[l]->step(ctx, law_begin_[l], law_begin_[l + 1]);
+    for (auto& list : cracks_per_chunk_) {  // chunk order = contact order: deterministic
+      cracks_.insert(cracks_.end(), list.begin(), list.end());
+      list.clear();
+    }
+  }
   energy_.slip += ctx.totals.dissipated_slip;
   energy_.breakage += ctx.totals.dissipated_breakage;
-  for (auto& list : cracks_per_thread_) {  // thread order = contact order: deterministic
-    cracks_.insert(cracks_.end(), list.begin(), list.end());
-    list.clear();
-  }
-  gather_forces();
+  gather_shared_forces();
   integrate();
   time_ += dt_;
   ++steps_;
 }
 
-void Solver::gather_forces() {
-  const auto& bl = model_.blocks;
-  const auto nb = static_cast<std::int64_t>(bl.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t bi = 0; bi < nb; ++bi) {
-    const auto b = static_cast<std::size_t>(bi);
+void Solver::gather_shared_forces() {
+  // Few blocks (where the thread parts meet, and the platens): not worth a parallel region.
+  for (const std::uint32_t b : shared_blocks_) {
     double fx = 0, fy = 0, m = 0;
     for (std::uint32_t k = gather_begin_[b]; k < gather_begin_[b + 1]; ++k) {
       const std::uint32_t e = gather_[k];
