@@ -63,8 +63,9 @@ class LawGroupOf final : public LawGroup {
     const double dt = ctx.dt;
     const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
-#pragma omp parallel num_threads(chunks) reduction(+ : slip, breakage)
-    // One part per thread; a thread the runtime did not grant leaves its part to the others.
+    // One part per thread; a thread the runtime did not grant (or a group too small to be worth
+    // a parallel region) leaves its part to the others.
+#pragma omp parallel num_threads(chunks) if (end - begin >= 2048) reduction(+ : slip, breakage)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
