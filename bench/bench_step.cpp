@@ -78,6 +78,7 @@ void BM_ScaledStep(benchmark::State& state) {
 BENCHMARK(BM_DefaultModelStep)->Args({1302, 1})->Args({1302, 2})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ScaledStep)
     ->Args({1000, 1})
+    ->Args({1000, 2})
     ->Args({10000, 1})
     ->Args({10000, 2})
     ->Args({100000, 1})
