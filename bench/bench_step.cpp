@@ -48,9 +48,22 @@ void run_steps(benchmark::State& state, const io::ModelConfig& cfg) {
       benchmark::Counter(static_cast<double>(updates) / threads, benchmark::Counter::kIsRate);
   state.counters["steps/s"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  state.counters["law_bytes/contact"] =
+  // Memory held per contact: record, force record (written only where a block is shared between
+  // threads), gather index, shared-side flags, law properties and state.
+  state.counters["bytes/contact"] =
       static_cast<double>(pm.solver->laws()[0]->bytes_per_contact() + sizeof(model::Contact) +
-                          sizeof(model::ContactForce) + 2 * sizeof(std::uint32_t));
+                          sizeof(model::ContactForce) + 2 * sizeof(std::uint32_t) + 1);
+  // Per block: 15 doubles of state, loads and mass, group, flag, corner index, cos/sin, packed
+  // kinematics; the solver's force sums, positions at the last detection and gather index; and
+  // per corner its local corner and arc centre, shape constants and world positions.
+  const auto& bl = pm.model->blocks;
+  const double per_block = 15 * sizeof(double) + sizeof(model::Group) + 1 + sizeof(std::uint32_t) +
+                           2 * sizeof(double) + sizeof(model::BlockKinematics) +
+                           6 * sizeof(double) + sizeof(std::uint32_t);
+  const double per_corner =
+      2 * sizeof(model::Point) + sizeof(model::CornerShape) + sizeof(model::CornerWorld);
+  state.counters["bytes/block"] = per_block + per_corner * static_cast<double>(bl.corner.size()) /
+                                                  static_cast<double>(bl.size());
 }
 
 void BM_DefaultModelStep(benchmark::State& state) {
@@ -65,6 +78,7 @@ void BM_ScaledStep(benchmark::State& state) {
 BENCHMARK(BM_DefaultModelStep)->Args({1302, 1})->Args({1302, 2})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ScaledStep)
     ->Args({1000, 1})
+    ->Args({1000, 2})
     ->Args({10000, 1})
     ->Args({10000, 2})
     ->Args({100000, 1})

@@ -70,19 +70,24 @@ void add_block(Model& model, std::span<const Point> polygon, double density, Gro
 
 void Blocks::refresh_world() {
   const auto n = static_cast<std::int64_t>(size());
+  // Plain pointers: through vector members the compiler must reload every block value after each
+  // store to world (a double store might alias them).
+  const Point *local_corner = corner.data(), *local_centre = round_centre.data();
+  CornerWorld* w = world.data();
 #pragma omp parallel for schedule(static)
   for (std::int64_t bi = 0; bi < n; ++bi) {
     const auto b = static_cast<std::size_t>(bi);
+    const double xb = x[b], yb = y[b];
     const double c = std::cos(theta[b]), s = std::sin(theta[b]);
     cos_t[b] = c;
     sin_t[b] = s;
-    for (std::uint32_t k = corner_begin[b]; k < corner_begin[b + 1]; ++k) {
-      world[k] = {
-          {x[b] + c * corner[k].x - s * corner[k].y, y[b] + s * corner[k].x + c * corner[k].y},
-          {x[b] + c * round_centre[k].x - s * round_centre[k].y,
-           y[b] + s * round_centre[k].x + c * round_centre[k].y}};
+    const std::uint32_t k0 = corner_begin[b], k1 = corner_begin[b + 1];
+    for (std::uint32_t k = k0; k < k1; ++k) {
+      const Point p = local_corner[k], q = local_centre[k];
+      w[k] = {{xb + c * p.x - s * p.y, yb + s * p.x + c * p.y},
+              {xb + c * q.x - s * q.y, yb + s * q.x + c * q.y}};
     }
-    kin[b] = {x[b], y[b], vx[b], vy[b], omega[b]};
+    kin[b] = {xb, yb, vx[b], vy[b], omega[b]};
   }
 }
 

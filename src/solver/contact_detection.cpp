@@ -88,11 +88,41 @@ struct Candidate {
   Point point;
 };
 
-bool key_less(const Contact& x, const Contact& y) {
-  if (x.law != y.law) return x.law < y.law;
-  if (x.a != y.a) return x.a < y.a;
-  if (x.corner != y.corner) return x.corner < y.corner;
-  return x.b < y.b;
+// A contact's sort key packed into two integers, so that sorting compares keys in place instead of
+// chasing indices into the contact array.
+struct SortKey {
+  std::uint64_t hi, lo;
+  std::size_t index;
+  bool operator<(const SortKey& o) const {
+    return hi != o.hi ? hi < o.hi : (lo != o.lo ? lo < o.lo : index < o.index);
+  }
+};
+
+// Memory order of the step loop: law, then corner owner a, corner, b.
+SortKey step_key(const Contact& c, std::size_t index) {
+  return {std::uint64_t{c.law} << 32 | static_cast<std::uint32_t>(c.a),
+          std::uint64_t{c.corner} << 32 | static_cast<std::uint32_t>(c.b), index};
+}
+
+// Block pair (lower, higher), then the step order within the pair (a is the lower or the higher
+// block, which with the law and the corner fixes the rest).
+SortKey pair_key(const Contact& c, std::size_t index) {
+  const auto lo = static_cast<std::uint32_t>(std::min(c.a, c.b));
+  const auto hi = static_cast<std::uint32_t>(std::max(c.a, c.b));
+  return {std::uint64_t{lo} << 32 | hi,
+          std::uint64_t{c.law} << 33 |
+              std::uint64_t{c.a != c.b && c.a == static_cast<std::int32_t>(hi)} << 32 | c.corner,
+          index};
+}
+
+template <class Key>
+std::vector<std::size_t> sorted_order(const std::vector<Contact>& contacts, Key key) {
+  std::vector<SortKey> keys(contacts.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = key(contacts[i], i);
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::size_t> order(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
+  return order;
 }
 
 // Lengths of new contacts from the spacing of all contacts between the same two blocks: each
@@ -186,15 +216,7 @@ DetectionStats ContactDetector::detect(model::Model& model,
   const double d = model.rounding_length;
   bl.refresh_world();
   // Existing contacts, indexed by key for lookup; their position in the old array is remembered.
-  std::vector<std::size_t> old_order(model.contacts.size());
-  for (std::size_t i = 0; i < old_order.size(); ++i) old_order[i] = i;
-  const auto pair_less = [&](std::size_t i, std::size_t j) {
-    const Contact &x = model.contacts[i], &y = model.contacts[j];
-    if (std::min(x.a, x.b) != std::min(y.a, y.b)) return std::min(x.a, x.b) < std::min(y.a, y.b);
-    if (std::max(x.a, x.b) != std::max(y.a, y.b)) return std::max(x.a, x.b) < std::max(y.a, y.b);
-    return key_less(x, y);
-  };
-  std::sort(old_order.begin(), old_order.end(), pair_less);
+  const std::vector<std::size_t> old_order = sorted_order(model.contacts, pair_key);
 
   DetectionStats stats;
   std::vector<Candidate> result;     // contacts of the new list, with their points
@@ -305,12 +327,9 @@ DetectionStats ContactDetector::detect(model::Model& model,
   flush_old_until(std::numeric_limits<std::uint32_t>::max(), 0, true);
 
   // Sort by law then corner owner (memory order of the step loop).
-  std::vector<std::size_t> order(result.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
-    return key_less(result[i].contact, result[j].contact);
-  });
   std::vector<Contact> contacts(result.size());
+  for (std::size_t i = 0; i < result.size(); ++i) contacts[i] = result[i].contact;
+  const std::vector<std::size_t> order = sorted_order(contacts, step_key);
   for (std::size_t i = 0; i < order.size(); ++i) contacts[i] = result[order[i]].contact;
 
   // Each law rebuilds its arrays from old local indices.

@@ -25,9 +25,7 @@ Solver::Solver(model::Model& model, std::vector<std::unique_ptr<laws::LawGroup>>
     : model_(model),
       laws_(std::move(laws)),
       detector_(settings.contact_tolerance, table),
-      settings_(settings) {
-  cracks_per_thread_.resize(static_cast<std::size_t>(omp_get_max_threads()));
-}
+      settings_(settings) {}
 
 void Solver::initialise() {
   detect(true);
@@ -64,11 +62,41 @@ void Solver::detect(bool bond_new) {
     gather_[fill[static_cast<std::size_t>(model_.contacts[i].a)]++] = i;
     gather_[fill[static_cast<std::size_t>(model_.contacts[i].b)]++] = i | b_side;
   }
+  partition();
   x_detect_ = bl.x;
   y_detect_ = bl.y;
   t_detect_ = bl.theta;
   last_detection_ = steps_;
   compute_time_step();
+}
+
+void Solver::partition() {
+  chunks_ = omp_get_max_threads();
+  cracks_per_chunk_.resize(static_cast<std::size_t>(chunks_));
+  const std::size_t nb = model_.blocks.size(), nc = model_.contacts.size();
+  constexpr int none = -1, several = -2;
+  std::vector<int> part(nb, none);
+  for (std::size_t l = 0; l < laws_.size(); ++l) {
+    for (int t = 0; t < chunks_; ++t) {
+      const auto [lo, hi] = laws::chunk_range(law_begin_[l], law_begin_[l + 1], t, chunks_);
+      for (std::size_t i = lo; i < hi; ++i) {
+        for (const auto blk : {model_.contacts[i].a, model_.contacts[i].b}) {
+          int& p = part[static_cast<std::size_t>(blk)];
+          p = p == none || p == t ? t : several;
+        }
+      }
+    }
+  }
+  shared_sides_.resize(nc);
+  for (std::size_t i = 0; i < nc; ++i) {
+    const model::Contact& c = model_.contacts[i];
+    shared_sides_[i] = static_cast<std::uint8_t>(
+        (part[static_cast<std::size_t>(c.a)] == several ? laws::a_shared : 0) |
+        (part[static_cast<std::size_t>(c.b)] == several ? laws::b_shared : 0));
+  }
+  shared_blocks_.clear();
+  for (std::size_t b = 0; b < nb; ++b)
+    if (part[b] == several) shared_blocks_.push_back(static_cast<std::uint32_t>(b));
 }
 
 void Solver::compute_time_step() {
@@ -120,36 +148,49 @@ void Solver::step() {
         steps_ - last_detection_ >= settings_.max_detection_interval)
       detect(false);
   }
-  laws::StepContext ctx{
-      &bl, model_.contacts.data(), forces_.data(), &cracks_per_thread_, dt_, time_, {}};
-  for (std::size_t l = 0; l < laws_.size(); ++l)
+  if (chunks_ != omp_get_max_threads()) partition();  // the thread count changed
+  std::fill(cfx_.begin(), cfx_.end(), 0.0);
+  std::fill(cfy_.begin(), cfy_.end(), 0.0);
+  std::fill(cm_.begin(), cm_.end(), 0.0);
+  laws::StepContext ctx{&bl,
+                        model_.contacts.data(),
+                        forces_.data(),
+                        shared_sides_.data(),
+                        cfx_.data(),
+                        cfy_.data(),
+                        cm_.data(),
+                        chunks_,
+                        &cracks_per_chunk_,
+                        dt_,
+                        time_,
+                        {}};
+  for (std::size_t l = 0; l < laws_.size(); ++l) {
     laws_[l]->step(ctx, law_begin_[l], law_begin_[l + 1]);
+    for (auto& list : cracks_per_chunk_) {  // chunk order = contact order: deterministic
+      cracks_.insert(cracks_.end(), list.begin(), list.end());
+      list.clear();
+    }
+  }
   energy_.slip += ctx.totals.dissipated_slip;
   energy_.breakage += ctx.totals.dissipated_breakage;
-  for (auto& list : cracks_per_thread_) {  // thread order = contact order: deterministic
-    cracks_.insert(cracks_.end(), list.begin(), list.end());
-    list.clear();
-  }
-  gather_forces();
+  gather_shared_forces();
   integrate();
   time_ += dt_;
   ++steps_;
 }
 
-void Solver::gather_forces() {
-  const auto& bl = model_.blocks;
-  const auto nb = static_cast<std::int64_t>(bl.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t bi = 0; bi < nb; ++bi) {
-    const auto b = static_cast<std::size_t>(bi);
+void Solver::gather_shared_forces() {
+  // Few blocks (where the thread parts meet, and the platens): not worth a parallel region.
+  for (const std::uint32_t b : shared_blocks_) {
     double fx = 0, fy = 0, m = 0;
     for (std::uint32_t k = gather_begin_[b]; k < gather_begin_[b + 1]; ++k) {
       const std::uint32_t e = gather_[k];
       const model::ContactForce& f = forces_[e & ~b_side];
-      const double s = (e & b_side) ? -1.0 : 1.0;
+      const bool on_b = (e & b_side) != 0;  // selects, not branches: the side is unpredictable
+      const double s = on_b ? -1.0 : 1.0;
       fx += s * f.fx;
       fy += s * f.fy;
-      m += s * ((f.px - bl.x[b]) * f.fy - (f.py - bl.y[b]) * f.fx);
+      m += s * (on_b ? f.mb : f.ma);
     }
     cfx_[b] = fx;
     cfy_[b] = fy;
@@ -163,32 +204,42 @@ void Solver::integrate() {
   const double alpha = settings_.local_damping, dt = dt_;
   const Point g = settings_.gravity;
   double w_boundary = 0, w_body = 0, w_damp = 0;
+  // Plain pointers and locals: through the vectors every store would force reloads of the others.
+  double *x = bl.x.data(), *y = bl.y.data(), *theta = bl.theta.data();
+  double *vx = bl.vx.data(), *vy = bl.vy.data(), *omega = bl.omega.data();
+  const double *fx_applied = bl.fx.data(), *fy_applied = bl.fy.data(),
+               *m_applied = bl.moment.data();
+  const double *mass = bl.mass.data(), *inertia = bl.inertia.data();
+  const double* gravity_mass = bl.gravity_mass.data();
+  const std::uint8_t* prescribed = bl.prescribed.data();
+  const double *cfx = cfx_.data(), *cfy = cfy_.data(), *cm = cm_.data();
 #pragma omp parallel for schedule(static) reduction(+ : w_boundary, w_body, w_damp)
   for (std::int64_t bi = 0; bi < nb; ++bi) {
     const auto b = static_cast<std::size_t>(bi);
-    if (bl.prescribed[b]) {
+    double u = vx[b], v = vy[b], w = omega[b];
+    if (prescribed[b]) {
       // Work of the platen on the specimen: minus the contact force the specimen exerts on it.
-      w_boundary -= (cfx_[b] * bl.vx[b] + cfy_[b] * bl.vy[b] + cm_[b] * bl.omega[b]) * dt;
-      bl.x[b] += bl.vx[b] * dt;
-      bl.y[b] += bl.vy[b] * dt;
-      bl.theta[b] += bl.omega[b] * dt;
-      continue;
+      w_boundary -= (cfx[b] * u + cfy[b] * v + cm[b] * w) * dt;
+    } else {
+      const double fx = cfx[b] + fx_applied[b] + gravity_mass[b] * g.x;
+      const double fy = cfy[b] + fy_applied[b] + gravity_mass[b] * g.y;
+      const double mz = cm[b] + m_applied[b];
+      const double dfx = -alpha * std::abs(fx) * sign(u);
+      const double dfy = -alpha * std::abs(fy) * sign(v);
+      const double dmz = -alpha * std::abs(mz) * sign(w);
+      u += (fx + dfx) / mass[b] * dt;
+      v += (fy + dfy) / mass[b] * dt;
+      w += (mz + dmz) / inertia[b] * dt;
+      vx[b] = u;
+      vy[b] = v;
+      omega[b] = w;
+      w_damp -= (dfx * u + dfy * v + dmz * w) * dt;
+      w_boundary += (fx_applied[b] * u + fy_applied[b] * v + m_applied[b] * w) * dt;
+      w_body += gravity_mass[b] * (g.x * u + g.y * v) * dt;
     }
-    const double fx = cfx_[b] + bl.fx[b] + bl.gravity_mass[b] * g.x;
-    const double fy = cfy_[b] + bl.fy[b] + bl.gravity_mass[b] * g.y;
-    const double mz = cm_[b] + bl.moment[b];
-    const double dfx = -alpha * std::abs(fx) * sign(bl.vx[b]);
-    const double dfy = -alpha * std::abs(fy) * sign(bl.vy[b]);
-    const double dmz = -alpha * std::abs(mz) * sign(bl.omega[b]);
-    bl.vx[b] += (fx + dfx) / bl.mass[b] * dt;
-    bl.vy[b] += (fy + dfy) / bl.mass[b] * dt;
-    bl.omega[b] += (mz + dmz) / bl.inertia[b] * dt;
-    w_damp -= (dfx * bl.vx[b] + dfy * bl.vy[b] + dmz * bl.omega[b]) * dt;
-    w_boundary += (bl.fx[b] * bl.vx[b] + bl.fy[b] * bl.vy[b] + bl.moment[b] * bl.omega[b]) * dt;
-    w_body += bl.gravity_mass[b] * (g.x * bl.vx[b] + g.y * bl.vy[b]) * dt;
-    bl.x[b] += bl.vx[b] * dt;
-    bl.y[b] += bl.vy[b] * dt;
-    bl.theta[b] += bl.omega[b] * dt;
+    x[b] += u * dt;
+    y[b] += v * dt;
+    theta[b] += w * dt;
   }
   energy_.boundary_work += w_boundary;
   energy_.body_work += w_body;

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "vorodec/model/model.hpp"
@@ -51,11 +52,29 @@ struct ContactTotals {
   double dissipated_breakage = 0.0;  // J per m, spring energy released by failures this step
 };
 
+// Contacts [begin, end) cut into `chunks` contiguous parts: part t, [first, second).
+inline std::pair<std::size_t, std::size_t> chunk_range(std::size_t begin, std::size_t end, int t,
+                                                       int chunks) {
+  const std::size_t n = end - begin, t0 = static_cast<std::size_t>(t);
+  const auto k = static_cast<std::size_t>(chunks);
+  return {begin + n * t0 / k, begin + n * (t0 + 1) / k};
+}
+
+// Where a contact's force goes. Each law group's range is cut into `chunks` parts (chunk_range),
+// one per thread. A block that only contacts of one part touch is that part's own: its sums are
+// added directly, in contact order. A block touched by several parts is shared: the contact
+// writes its force record and the solver gathers the block's sum afterwards, also in contact
+// order. Either way the sums are the same bits for any thread count.
+inline constexpr std::uint8_t a_shared = 1, b_shared = 2;
+
 struct StepContext {
   model::Blocks* blocks;
-  model::Contact* contacts;     // whole contact array
-  model::ContactForce* forces;  // whole force array
-  std::vector<std::vector<CrackEvent>>* cracks_per_thread;
+  model::Contact* contacts;          // whole contact array
+  model::ContactForce* forces;       // whole force array (written where a block is shared)
+  const std::uint8_t* shared_sides;  // per contact: a_shared | b_shared
+  double *fx, *fy, *moment;          // per block contact sums, zero before the step
+  int chunks;                        // parts per law group; cracks_per_chunk has this many lists
+  std::vector<std::vector<CrackEvent>>* cracks_per_chunk;
   double dt;    // s
   double time;  // s
   ContactTotals totals;

@@ -56,20 +56,26 @@ class LawGroupOf final : public LawGroup {
     model::Blocks& bl = *ctx.blocks;
     model::Contact* contacts = ctx.contacts;
     model::ContactForce* forces = ctx.forces;
+    const std::uint8_t* shared_sides = ctx.shared_sides;
+    double *sum_fx = ctx.fx, *sum_fy = ctx.fy, *sum_m = ctx.moment;
     auto* props = props_.data();
     auto* state = state_.data();
     const double dt = ctx.dt;
+    const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
-#pragma omp parallel reduction(+ : slip, breakage)
-    {
-      auto& cracks = (*ctx.cracks_per_thread)[static_cast<std::size_t>(omp_get_thread_num())];
-#pragma omp for schedule(static)
-      for (std::size_t i = begin; i < end; ++i) {
+    // One part per thread; a thread the runtime did not grant (or a group too small to be worth
+    // a parallel region) leaves its part to the others.
+#pragma omp parallel num_threads(chunks) if (end - begin >= 2048) reduction(+ : slip, breakage)
+    for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
+      auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
+      const auto [lo, hi] = chunk_range(begin, end, t, chunks);
+      for (std::size_t i = lo; i < hi; ++i) {
         model::Contact& c = contacts[i];
         const model::ContactFrame f = model::contact_frame(bl, c);
         const model::Point s{-f.n.y, f.n.x};
-        const model::BlockKinematics& ka = bl.kin[static_cast<std::size_t>(c.a)];
-        const model::BlockKinematics& kb = bl.kin[static_cast<std::size_t>(c.b)];
+        const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+        const model::BlockKinematics& ka = bl.kin[a];
+        const model::BlockKinematics& kb = bl.kin[b];
         // Relative velocity of a with respect to b at the contact point.
         const double vrx =
             (ka.vx - ka.omega * (f.point.y - ka.y)) - (kb.vx - kb.omega * (f.point.y - kb.y));
@@ -102,7 +108,21 @@ class LawGroupOf final : public LawGroup {
             c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
                                                     : model::ContactState::intact;
         }
-        forces[i] = {r.fn * f.n.x + r.fs * s.x, r.fn * f.n.y + r.fs * s.y, f.point.x, f.point.y};
+        const double fx = r.fn * f.n.x + r.fs * s.x, fy = r.fn * f.n.y + r.fs * s.y;
+        const double ma = (f.point.x - ka.x) * fy - (f.point.y - ka.y) * fx;
+        const double mb = (f.point.x - kb.x) * fy - (f.point.y - kb.y) * fx;
+        const std::uint8_t shared = shared_sides[i];
+        if (shared != 0) forces[i] = {fx, fy, ma, mb};
+        if (!(shared & a_shared)) {
+          sum_fx[a] += fx;
+          sum_fy[a] += fy;
+          sum_m[a] += ma;
+        }
+        if (!(shared & b_shared)) {
+          sum_fx[b] -= fx;
+          sum_fy[b] -= fy;
+          sum_m[b] -= mb;
+        }
       }
     }
     ctx.totals.dissipated_slip += slip;

@@ -89,9 +89,12 @@ struct Contact {
   std::uint8_t bonded = 0;  // 1: part of the initial tessellation (cohesive until it fails)
 };
 
-// Force of one contact on block a, applied at point (px, py); block b receives the opposite.
+// Force of one contact on block a and its moments about both centroids; block b receives the
+// opposite force. The moments are taken in the contact loop, which has both centroids at hand, so
+// that gathering a block's forces is additions only.
 struct ContactForce {
-  double fx = 0, fy = 0, px = 0, py = 0;
+  double fx = 0, fy = 0;
+  double ma = 0, mb = 0;  // N m per m, moment of (fx, fy) about a's and about b's centroid
 };
 
 struct Model {

@@ -65,7 +65,8 @@ class Solver {
  private:
   void detect(bool bond_new);
   void compute_time_step();
-  void gather_forces();
+  void partition();
+  void gather_shared_forces();
   void integrate();
 
   model::Model& model_;
@@ -74,10 +75,15 @@ class Solver {
   ContactDetector detector_;
   SolverSettings settings_;
   std::vector<model::ContactForce> forces_;
-  std::vector<std::uint32_t> gather_begin_, gather_;    // block -> contacts (top bit: block is b)
-  std::vector<double> cfx_, cfy_, cm_;                  // contact force sums per block
+  std::vector<std::uint32_t> gather_begin_, gather_;  // block -> contacts (top bit: block is b)
+  std::vector<double> cfx_, cfy_, cm_;                // contact force sums per block
+  // Thread parts of the contact loop (laws::StepContext): per contact which of its blocks are
+  // shared between parts, and the shared blocks, whose sums gather_shared_forces() takes.
+  int chunks_ = 0;
+  std::vector<std::uint8_t> shared_sides_;
+  std::vector<std::uint32_t> shared_blocks_;
   std::vector<double> x_detect_, y_detect_, t_detect_;  // positions at the last detection
-  std::vector<std::vector<laws::CrackEvent>> cracks_per_thread_;
+  std::vector<std::vector<laws::CrackEvent>> cracks_per_chunk_;
   std::vector<laws::CrackEvent> cracks_;
   Energy energy_;
   double dt_ = 0.0, time_ = 0.0;
