@@ -156,3 +156,17 @@ TEST(BadInput, CyclicBlockWithoutUnloadingRateIsRejected) {
   EXPECT_TRUE(rejected("cyclic_rate", replace(good_model, "[[stage]]\n", cyclic + "[[stage]]\n"),
                        "stage[0].unloading_rate", 14, "required key is missing"));
 }
+
+TEST(BadInput, FixedTimeStepWithDensityScalingIsRejected) {
+  const std::string solver = "[solver]\ntime_step = 1e-6\nfixed_time_step = 1e-8\n";
+  EXPECT_TRUE(rejected("fixed_and_scaled",
+                       replace(good_model, "[[stage]]\n", solver + "[[stage]]\n"),
+                       "solver.fixed_time_step", 16, "cannot be combined with 'time_step'"));
+}
+
+TEST(BadInput, NonPositiveFixedTimeStepIsRejected) {
+  EXPECT_TRUE(
+      rejected("fixed_zero",
+               replace(good_model, "[[stage]]\n", "[solver]\nfixed_time_step = 0\n[[stage]]\n"),
+               "solver.fixed_time_step", 15, "must be > 0"));
+}

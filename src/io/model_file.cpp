@@ -287,6 +287,12 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     cfg.solver.safety_factor = s.positive("safety_factor", 0.8);
     if (cfg.solver.safety_factor > 1) s.fail("safety_factor", "must be <= 1");
     cfg.solver.time_step = s.non_negative("time_step", 0.0);
+    if (s.has("fixed_time_step")) {
+      cfg.solver.fixed_time_step = s.positive("fixed_time_step", laws::required);
+      if (cfg.solver.time_step > 0)
+        s.fail("fixed_time_step",
+               "cannot be combined with 'time_step' (density scaling): give one of them");
+    }
     cfg.max_steps = s.integer("max_steps", 20'000'000, 1);
     cfg.solver.max_detection_interval =
         static_cast<int>(s.integer("max_detection_interval", 200, 1));

@@ -126,8 +126,21 @@ void Solver::compute_time_step() {
     }
     dt = std::min({dt, std::sqrt(bl.mass[b] / kt[b]), std::sqrt(bl.inertia[b] / kr[b])});
   }
-  dt_ = target > 0.0 ? target : s * dt;
-  if (dt_ == std::numeric_limits<double>::max()) dt_ = 1e-6;  // no contacts: free flight
+  // No contacts: free flight, no stability limit; 1e-6 s unless a fixed step is given.
+  const bool free = dt == std::numeric_limits<double>::max();
+  critical_dt_ = free ? std::numeric_limits<double>::infinity() : s * dt;
+  dt_ = target > 0.0 ? target : free ? 1e-6 : critical_dt_;
+  const double fixed = settings_.fixed_time_step;
+  if (fixed > 0.0) {  // re-checked at every detection: new contacts can lower the critical step
+    if (fixed > critical_dt_ && !fixed_step_warned_) {
+      fmt::print(stderr,
+                 "warning: solver.fixed_time_step = {:.4g} s is above the critical time step "
+                 "{:.4g} s (safety_factor x min sqrt(m/k)) at step {}; using the critical step\n",
+                 fixed, critical_dt_, steps_);
+      fixed_step_warned_ = true;
+    }
+    dt_ = std::min(fixed, critical_dt_);
+  }
 }
 
 void Solver::step() {

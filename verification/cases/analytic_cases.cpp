@@ -98,17 +98,17 @@ CaseResult a2_tessellation_area() {
 namespace {
 // Two bonded squares side by side, pushed apart, undamped (A3).
 struct PairRun {
-  double period_measured, period_expected, energy_drift, seconds;
+  double period_measured, period_expected, energy_drift, dt;
 };
 
-PairRun bonded_pair() {
+PairRun bonded_pair(double safety) {
   model::Model m;
   m.rounding_length = 0.01 * a;
   model::add_block(m, square(0, 0, a), rho, Group::specimen);
   model::add_block(m, square(a, 0, a), rho, Group::specimen);
   solver::SolverSettings s;
   s.local_damping = 0.0;
-  s.safety_factor = 0.1;
+  s.safety_factor = safety;
   const double jkn = 1e10;
   auto solver = make_solver(m, "linear_elastic", params({{"jkn", jkn}, {"jks", jkn}}), s);
   const double period = 2 * std::numbers::pi * std::sqrt(rho * a * a / 2 / (jkn * a));
@@ -132,7 +132,7 @@ PairRun bonded_pair() {
     first += energy[i];
     last += energy[energy.size() - 1 - i];
   }
-  return {measured, period, std::abs(last / first - 1.0), 0};
+  return {measured, period, std::abs(last / first - 1.0), solver->dt()};
 }
 }  // namespace
 
@@ -141,7 +141,7 @@ CaseResult a3_bonded_pair_period() {
                 "T = 2 pi sqrt(m_eff / (jkn L)), m_eff = m/2", 0, 0, 0, 5e-3,
                 "safety factor 0.1, no damping"},
                [](CaseResult& r) {
-                 const PairRun p = bonded_pair();
+                 const PairRun p = bonded_pair(0.1);
                  r.expected = p.period_expected;
                  r.measured = p.period_measured;
                  r.error = rel(r.measured, r.expected);
@@ -151,7 +151,7 @@ CaseResult a3_bonded_pair_period() {
 CaseResult a3_bonded_pair_energy_drift() {
   return timed({"A3", "bonded pair: energy drift over 100 periods",
                 "kinetic + strain energy constant", 0, 0, 0, 1e-4, "safety factor 0.1, no damping"},
-               [](CaseResult& r) { r.error = r.measured = bonded_pair().energy_drift; });
+               [](CaseResult& r) { r.error = r.measured = bonded_pair(0.1).energy_drift; });
 }
 
 CaseResult a4_incline(double angle_deg) {
@@ -307,41 +307,83 @@ CaseResult a7_weibull_mean() {
                });
 }
 
+namespace {
+// One block on a spring with local damping alpha: the worst amplitude ratio per cycle (A8).
+struct DampingRun {
+  double worst_ratio, error, dt;
+};
+
+DampingRun damped_spring(double alpha, double safety) {
+  model::Model m;
+  m.rounding_length = 0.01 * a;
+  model::add_block(m, square(0, a, a), rho, Group::specimen);
+  model::add_block(m, square(0, 0, a), rho, Group::bottom_platen);
+  solver::SolverSettings s;
+  s.local_damping = alpha;
+  s.safety_factor = safety;
+  auto solver = make_solver(m, "linear_elastic", params({{"jkn", 1e10}, {"jks", 1e10}}), s);
+  m.blocks.vy[0] = 0.01;
+  const double y0 = m.blocks.y[0], expected = (1 - alpha) / (1 + alpha);
+  std::vector<double> peaks;
+  double u2 = 0, u1 = 0;
+  while (peaks.size() < 6 && solver->steps() < 1000000) {
+    solver->step();
+    const double u = m.blocks.y[0] - y0;
+    if (u1 > u2 && u1 >= u && u1 > 0) peaks.push_back(u1);
+    u2 = u1;
+    u1 = u;
+  }
+  DampingRun r{0, peaks.size() < 6 ? 1.0 : 0.0, solver->dt()};
+  for (std::size_t i = 1; i < peaks.size(); ++i) {
+    const double e = rel(peaks[i] / peaks[i - 1], expected);
+    if (e >= r.error) {
+      r.error = e;
+      r.worst_ratio = peaks[i] / peaks[i - 1];
+    }
+  }
+  return r;
+}
+}  // namespace
+
 CaseResult a8_local_damping() {
   const double alpha = 0.1;
-  return timed(
-      {"A8", "one block on a spring, local damping alpha = 0.1: amplitude ratio per cycle",
-       "sqrt(energy ratio) = (1 - alpha)/(1 + alpha)", (1 - alpha) / (1 + alpha), 0, 0, 0.02,
-       "safety factor 0.05; worst of 5 cycles"},
-      [&](CaseResult& r) {
-        model::Model m;
-        m.rounding_length = 0.01 * a;
-        model::add_block(m, square(0, a, a), rho, Group::specimen);
-        model::add_block(m, square(0, 0, a), rho, Group::bottom_platen);
-        solver::SolverSettings s;
-        s.local_damping = alpha;
-        s.safety_factor = 0.05;
-        auto solver = make_solver(m, "linear_elastic", params({{"jkn", 1e10}, {"jks", 1e10}}), s);
-        m.blocks.vy[0] = 0.01;
-        const double y0 = m.blocks.y[0];
-        std::vector<double> peaks;
-        double u2 = 0, u1 = 0;
-        while (peaks.size() < 6 && solver->steps() < 1000000) {
-          solver->step();
-          const double u = m.blocks.y[0] - y0;
-          if (u1 > u2 && u1 >= u && u1 > 0) peaks.push_back(u1);
-          u2 = u1;
-          u1 = u;
-        }
-        r.error = peaks.size() < 6 ? 1.0 : 0.0;
-        for (std::size_t i = 1; i < peaks.size(); ++i) {
-          const double e = rel(peaks[i] / peaks[i - 1], r.expected);
-          if (e >= r.error) {
-            r.error = e;
-            r.measured = peaks[i] / peaks[i - 1];
-          }
-        }
-      });
+  return timed({"A8", "one block on a spring, local damping alpha = 0.1: amplitude ratio per cycle",
+                "sqrt(energy ratio) = (1 - alpha)/(1 + alpha)", (1 - alpha) / (1 + alpha), 0, 0,
+                0.02, "safety factor 0.05; worst of 5 cycles"},
+               [&](CaseResult& r) {
+                 const DampingRun d = damped_spring(alpha, 0.05);
+                 r.measured = d.worst_ratio;
+                 r.error = d.error;
+               });
+}
+
+std::vector<Ladder> analytic_ladders() {
+  Ladder period{"A3 bonded pair: period against time step",
+                "time step (s), safety factor 0.8 ... 0.05",
+                "period (s)",
+                "exact T = 2 pi sqrt(m_eff / (jkn L))",
+                0,
+                {}};
+  Ladder damping{"A8 local damping alpha = 0.1: amplitude ratio against time step",
+                 "time step (s), safety factor 0.8 ... 0.05",
+                 "amplitude ratio per cycle (worst of 5)",
+                 "exact (1 - alpha)/(1 + alpha)",
+                 0.9 / 1.1,
+                 {}};
+  for (double sf : {0.8, 0.4, 0.2, 0.1, 0.05}) {
+    auto t0 = std::chrono::steady_clock::now();
+    const PairRun p = bonded_pair(sf);
+    const auto since = [](auto t) {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    period.reference_value = p.period_expected;
+    period.rungs.push_back(
+        {p.dt, p.period_measured, rel(p.period_measured, p.period_expected), since(t0), sf == 0.8});
+    t0 = std::chrono::steady_clock::now();
+    const DampingRun d = damped_spring(0.1, sf);
+    damping.rungs.push_back({d.dt, d.worst_ratio, d.error, since(t0), sf == 0.8});
+  }
+  return {period, damping};
 }
 
 std::vector<NamedCase> analytic_cases() {

@@ -54,6 +54,7 @@ struct StabilityOutcome {
   std::string status;   // summary.json status
   bool finite = false;  // every history value finite
   long steps = 0;
+  double time_step = 0;  // s, summary.json time_step_s
   double seconds = 0;
   bool acceptable() const {
     return (exit_code == 0 || exit_code == 3) && finite && !status.empty();
@@ -61,6 +62,38 @@ struct StabilityOutcome {
 };
 std::vector<StabilityOutcome> stability_cases(const std::string& source_dir,
                                               const std::string& binary);
+
+// Zero damping, elastic bonds (strengths never reached): a bonded assembly of 30 Voronoi blocks
+// with random initial velocities runs `steps` steps. Returns max |E - E0| / E0 of kinetic + strain
+// energy, with the time-centred kinetic energy 1/2 m v(n-1/2).v(n+1/2) and with the plain one.
+struct UndampedEnergy {
+  double shadow = 0, plain = 0, dt = 0, seconds = 0;
+  long steps = 0;
+  std::size_t blocks = 0, contacts = 0;
+};
+UndampedEnergy undamped_energy(long steps);
+inline constexpr double undamped_energy_bound = 1e-2;  // on UndampedEnergy::shadow
+
+// Convergence ladders: one quantity at a sequence of discretisations, coarse to fine.
+struct LadderRung {
+  double parameter = 0;  // the discretisation (time step, loading rate)
+  double value = 0;
+  double error = 0;  // relative to the ladder's reference
+  double seconds = 0;
+  bool is_default = false;  // the setting the code or the model uses by default
+};
+struct Ladder {
+  std::string name, parameter, quantity;
+  std::string reference;  // exact value, or the finest rung taken as converged
+  double reference_value = 0;
+  std::vector<LadderRung> rungs;
+  // Observed order: least-squares slope of log(error) against log(parameter), rungs with error > 0.
+  double order() const;
+};
+std::vector<Ladder> analytic_ladders();  // A3 period and A8 damping against the time step
+// The default model (models/ucs_marble.toml), one thread: UCS and E against the platen speed and
+// against the density-scaling time step, each relative to its finest run. Minutes.
+std::vector<Ladder> model_ladders(const std::string& source_dir, const std::string& binary);
 
 struct NamedCase {
   std::string id;

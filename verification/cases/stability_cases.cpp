@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "cases.hpp"
 
@@ -22,6 +23,30 @@ struct Variant {
   std::vector<std::pair<std::string, std::string>> edits;  // replace first occurrence
   long max_steps;
 };
+
+// e2e_small's generated specimen, to be replaced by a prepared specimen file.
+constexpr const char* e2e_specimen =
+    "width = 0.02           # m\nheight = 0.04          # m\nblock_count = 170\n"
+    "lloyd_iterations = 2\nmin_edge_length = 2e-4 # m\n";
+
+// A 10 x 20 grid of 2 mm squares with one row of height `sliver` at mid-height: each sliver
+// block is (2 mm / sliver) times smaller in area and mass than its neighbours above and below.
+void write_sliver_specimen(const fs::path& file, double sliver) {
+  constexpr int nx = 10, rows = 21;
+  constexpr double h = 2e-3;
+  std::vector<double> y{0.0};
+  for (int r = 0; r < rows; ++r) y.push_back(y.back() + (r == rows / 2 ? sliver : h));
+  std::ofstream out(file);
+  out << "vorodec-specimen 1\nvertices " << (nx + 1) * (rows + 1) << "\n";
+  for (double yr : y)
+    for (int i = 0; i <= nx; ++i) out << fmt::format("{:a} {:a}\n", i * h, yr);
+  out << "blocks " << nx * rows << "\n";
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < nx; ++c) {
+      const int v = r * (nx + 1) + c;
+      out << fmt::format("4 {} {} {} {}\n", v, v + 1, v + nx + 2, v + nx + 1);
+    }
+}
 
 std::string slurp(const fs::path& f) {
   std::ifstream in(f);
@@ -95,18 +120,36 @@ std::vector<StabilityOutcome> stability_cases(const std::string& source_dir,
        {{"tension = { weibull_shape = 4.0, mean = 14e6 }", "tension = 0"},
         {"cohesion = { weibull_shape = 4.0, mean = 24e6 }", "cohesion = 0"}},
        40000},
+      {"sliver blocks 1/100",
+       "specimen file: 10 x 20 grid of 2 mm squares plus a 20 um row at mid-height (area and "
+       "mass ratio to the neighbours 100)",
+       {{e2e_specimen, "file = \"sliver100.vorodec\"\n"}},
+       40000},
+      {"near-zero mass 1e-6",
+       "specimen file: the same grid with a 2 nm row (mass ratio 1e-6); no density scaling",
+       {{e2e_specimen, "file = \"sliver1e6.vorodec\"\n"}, {"time_step = 1e-6", "time_step = 0"}},
+       3000},
+      {"fixed step above critical",
+       "fixed_time_step = 1e-6 s instead of density scaling (above the critical step)",
+       {{"time_step = 1e-6", "fixed_time_step = 1e-6"}},
+       3000},
   };
   const fs::path model = fs::path(source_dir) / "tests/models/e2e_small.toml";
   const fs::path dir =
       fs::temp_directory_path() / ("vorodec_stability_" + std::to_string(getpid()));
   fs::create_directories(dir);
+  write_sliver_specimen(dir / "sliver100.vorodec", 2e-5);
+  write_sliver_specimen(dir / "sliver1e6.vorodec", 2e-9);
   std::vector<StabilityOutcome> out;
   std::size_t index = 0;
   for (const Variant& v : variants) {
     std::string text = slurp(model);
     for (const auto& [from, to] : v.edits) {
       const auto p = text.find(from);
-      if (p != std::string::npos) text.replace(p, from.size(), to);
+      if (p == std::string::npos)  // a stale edit would silently test the unchanged model
+        throw std::runtime_error(
+            fmt::format("stability case '{}': no '{}' in {}", v.name, from, model.string()));
+      text.replace(p, from.size(), to);
     }
     const fs::path file = dir / fmt::format("case{}.toml", index++);
     std::ofstream(file) << text;
@@ -124,6 +167,7 @@ std::vector<StabilityOutcome> stability_cases(const std::string& source_dir,
     const std::string summary = slurp(run_dir / "summary.json");
     o.status = field(summary, "status");
     o.steps = std::atol(field(summary, "steps").c_str());
+    o.time_step = std::atof(field(summary, "time_step_s").c_str());
     o.finite = history_finite(run_dir / "history.csv");
     out.push_back(o);
   }

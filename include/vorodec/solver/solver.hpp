@@ -15,6 +15,7 @@ struct SolverSettings {
   double local_damping = 0.8;      // Cundall alpha
   double safety_factor = 0.8;      // fraction of the critical time step
   double time_step = 0.0;          // s; > 0: density scaling to reach this step (quasi-static only)
+  double fixed_time_step = 0.0;    // s; > 0: this step, capped at the critical one (warns once)
   model::Point gravity{0.0, 0.0};  // m/s^2
   double contact_tolerance = 0.0;  // m, create within / delete beyond this gap
   int max_detection_interval = 200;  // steps between detections at most
@@ -47,6 +48,8 @@ class Solver {
 
   double time() const { return time_; }
   double dt() const { return dt_; }
+  // s, safety factor x the smallest sqrt(m/k) at the last detection (after density scaling).
+  double critical_time_step() const { return critical_dt_; }
   long steps() const { return steps_; }
   const Energy& energy() const { return energy_; }
   const std::vector<laws::CrackEvent>& cracks() const { return cracks_; }
@@ -86,7 +89,8 @@ class Solver {
   std::vector<std::vector<laws::CrackEvent>> cracks_per_chunk_;
   std::vector<laws::CrackEvent> cracks_;
   Energy energy_;
-  double dt_ = 0.0, time_ = 0.0;
+  double dt_ = 0.0, critical_dt_ = 0.0, time_ = 0.0;
+  bool fixed_step_warned_ = false;
   long steps_ = 0, last_detection_ = 0;
   std::size_t initial_bonded_ = 0, detections_ = 0;
 };
