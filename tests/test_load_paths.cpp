@@ -146,3 +146,13 @@ TEST(FailureStages, InitiationAtFirstFailureAndAccelerationWhereTheRateDoubles) 
   EXPECT_GT(f.accelerating_stress, 2.0e7);
   EXPECT_LT(f.accelerating_stress, 2.15e7);
 }
+
+TEST(StageControl, ReloadingThatDipsWhileItsVelocityRampsUpDoesNotStall) {
+  loading::Stage up;
+  up.platen_velocity = 0.01;
+  up.ramp_time = 1e-3;
+  up.end.axial_stress = 30e6;
+  loading::StageControl c(up, -0.01, 20e3, 0.0);  // after an unloading: platen still retracting
+  for (double s : {10e3, 0.0, 0.0, 0.0, 0.0, 5e3})
+    EXPECT_EQ(c.judge({0.0, s, 0.0, true}), loading::StageOutcome::running);
+}

@@ -58,7 +58,9 @@ StageOutcome StageControl::judge(const StageSample& s) {
     } else {
       ++rows_since_peak_;
     }
-    past_peak = row_peak_ > 0 && rows_since_peak_ >= 3;
+    // A peak counts once the stress has risen 0.1 MPa above its start: a stage that begins at a
+    // low stress while its velocity ramps up (after an unloading) is not past a peak.
+    past_peak = row_peak_ > std::max(stress0_, 0.0) + 1e5 && rows_since_peak_ >= 3;
   }
   if (!std::isnan(end.post_peak_fraction) && past_peak) {
     const double drop = (1.0 - load / row_peak_) / (1.0 - end.post_peak_fraction);
@@ -86,7 +88,7 @@ StageOutcome StageControl::judge(const StageSample& s) {
   if (done) return StageOutcome::done;
   // Loading towards a stress it can no longer reach: the curve has peaked below it.
   if (rising_ && !std::isnan(end.axial_stress) && st_.control == Control::platen_velocity &&
-      past_peak)
+      past_peak && row_peak_ >= stress0_ + 0.5 * (end.axial_stress - stress0_))
     return StageOutcome::stalled;
   return StageOutcome::running;
 }
