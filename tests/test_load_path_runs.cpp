@@ -105,3 +105,24 @@ TEST(LoadPathRuns, BrazilianDiscSplitsAlongTheLoadedDiameter) {
   EXPECT_GT(tensile_cracks_near(out, 90.0), 0.5);       // splitting parallel to the load
   EXPECT_EQ(json_number(s, "youngs_modulus_Pa"), 0.0);  // no modulus from a disc
 }
+
+TEST(LoadPathRuns, ConstantStressStagesHoldEachStepOfAMultiStepCreepPath) {
+  const fs::path out = run("creep_steps_small");
+  std::ifstream in(out / "history.csv");
+  std::string line;
+  std::getline(in, line);
+  int checked = 0;
+  while (std::getline(in, line)) {
+    const std::string stage = line.substr(line.rfind(',') + 1);
+    if (stage != "hold10" && stage != "hold20") continue;
+    std::stringstream ss(line);
+    std::vector<double> v;
+    for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::atof(cell.c_str()));
+    const double target = stage == "hold10" ? 10e6 : 20e6;
+    const double start = stage == "hold10" ? 0.0 : 2e-3;  // each stage lasts 2e-3 s
+    if (v[time_col] - start < 1e-3) continue;             // the servo's approach
+    EXPECT_NEAR(v[stress_col], target, 0.01 * target) << line;
+    ++checked;
+  }
+  EXPECT_GT(checked, 20);
+}
