@@ -15,8 +15,6 @@ plot. The title is the name of the CSV's folder. Default output: <csv without .c
 Needs Debian's /usr/bin/python3 with python3-numpy and python3-matplotlib.
 """
 import argparse
-import csv
-import math
 import os
 import sys
 
@@ -26,32 +24,17 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from csvdata import read_columns, require  # noqa: E402
+
 REQUIRED = ("axial_strain", "axial_stress")
 OPTIONAL = ("time", "lateral_strain", "volumetric_strain", "cracks_tensile", "cracks_shear")
 
 
 def read_history(path):
     """Returns {column: float array} for the known columns; NaN where a cell is not a number."""
-    with open(path, newline="") as f:
-        rows = [r for r in csv.reader(f) if r and not r[0].lstrip().startswith("#")]
-    if not rows:
-        raise ValueError("%s is empty" % path)
-    header = [h.strip() for h in rows[0]]
-    missing = [c for c in REQUIRED if c not in header]
-    if missing:
-        raise ValueError("%s lacks column(s) %s; has %s" % (path, ", ".join(missing), ", ".join(header)))
-    data = {}
-    for name in REQUIRED + OPTIONAL:
-        if name not in header:
-            continue
-        j = header.index(name)
-        col = []
-        for r in rows[1:]:
-            try:
-                col.append(float(r[j]))
-            except (IndexError, ValueError):
-                col.append(math.nan)
-        data[name] = np.array(col, dtype=float)
+    columns = read_columns(path)
+    require(columns, path, REQUIRED)
+    data = {n: columns[n] for n in REQUIRED + OPTIONAL if n in columns}
     # Rows without both axial strain and stress (e.g. a run killed mid-line) are dropped.
     keep = np.isfinite(data["axial_strain"]) & np.isfinite(data["axial_stress"])
     data = {k: v[keep] for k, v in data.items()}

@@ -3,6 +3,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +21,23 @@ inline int run_vorodec(const std::string& args) {
   const int status =
       std::system((std::string(VORODEC_BINARY) + " " + args + " > /dev/null 2>&1").c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+struct Outcome {
+  int code;
+  std::string output;  // stdout and stderr together
+};
+
+// Exit code and console output of `vorodec <args>`.
+inline Outcome run_capture(const std::string& args) {
+  const std::string cmd = std::string(VORODEC_BINARY) + " " + args + " 2>&1";
+  Outcome o{-1, {}};
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) o.output += buf;
+  const int status = pclose(p);
+  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
 }
 
 // One folder per process: ctest runs each test as its own process, several at a time.

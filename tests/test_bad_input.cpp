@@ -7,6 +7,10 @@
 #include <fstream>
 #include <string>
 
+#include "run_support.hpp"
+
+using vorodec::testing::Outcome;
+using vorodec::testing::run_capture;
 namespace fs = std::filesystem;
 
 namespace {
@@ -29,22 +33,6 @@ platen_velocity = 0.05
 end_axial_strain = 0.001
 )";
 
-struct Outcome {
-  int code;
-  std::string output;
-};
-
-Outcome run(const std::string& args) {
-  const std::string cmd = std::string(VORODEC_BINARY) + " " + args + " 2>&1";
-  Outcome o{-1, {}};
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[512];
-  while (fgets(buf, sizeof buf, p)) o.output += buf;
-  const int status = pclose(p);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
-
 fs::path write_model(const std::string& name, const std::string& text) {
   const fs::path dir = fs::temp_directory_path() / "vorodec_bad_input";
   fs::create_directories(dir);
@@ -64,7 +52,7 @@ std::string replace(std::string text, const std::string& from, const std::string
 ::testing::AssertionResult rejected(const std::string& name, const std::string& text,
                                     const std::string& key, int line, const std::string& phrase) {
   const fs::path file = write_model(name, text);
-  const Outcome o = run("check " + file.string());
+  const Outcome o = run_capture("check " + file.string());
   const std::string where = file.string() + ":" + std::to_string(line);
   if (o.code != 2)
     return ::testing::AssertionFailure() << "exit code " << o.code << ": " << o.output;
@@ -82,7 +70,7 @@ std::string replace(std::string text, const std::string& from, const std::string
 }  // namespace
 
 TEST(BadInput, GoodModelPassesCheck) {
-  const Outcome o = run("check " + write_model("good", good_model).string());
+  const Outcome o = run_capture("check " + write_model("good", good_model).string());
   EXPECT_EQ(o.code, 0) << o.output;
 }
 
@@ -133,13 +121,13 @@ TEST(BadInput, ImpossibleGeometryIsReportedAgainstTheSpecimenTable) {
 
 TEST(BadInput, UnwritableOutputFolderIsRejected) {
   const fs::path file = write_model("good_for_out", good_model);
-  const Outcome o = run("run " + file.string() + " --out /proc/vorodec_cannot_write_here");
+  const Outcome o = run_capture("run " + file.string() + " --out /proc/vorodec_cannot_write_here");
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find("--out"), std::string::npos) << o.output;
 }
 
 TEST(BadInput, UnknownCommandLineOptionExitsWithTwo) {
-  EXPECT_EQ(run("run --no-such-option x.toml").code, 2);
+  EXPECT_EQ(run_capture("run --no-such-option x.toml").code, 2);
 }
 
 TEST(BadInput, CyclicBlockWithLowerLimitAboveAnUpperLimitIsRejected) {

@@ -12,25 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "run_support.hpp"
+
+using vorodec::testing::Outcome;
+using vorodec::testing::run_capture;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Outcome {
-  int code;
-  std::string output;
-};
-
-Outcome run(const std::string& args) {
-  const std::string cmd = std::string(VORODEC_BINARY) + " " + args + " 2>&1";
-  Outcome o{-1, {}};
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[512];
-  while (fgets(buf, sizeof buf, p)) o.output += buf;
-  const int status = pclose(p);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
 
 std::string read(const fs::path& file) {
   std::ifstream in(file);
@@ -94,7 +82,7 @@ class Batch : public ::testing::Test {
 
 TEST_F(Batch, ResultsTableHasOneRowPerCaseInCaseOrder) {
   const Outcome o =
-      run("batch " + models + "batch_small.toml --no-vtk --out " + (dir_ / "out").string());
+      run_capture("batch " + models + "batch_small.toml --no-vtk --out " + (dir_ / "out").string());
   EXPECT_EQ(o.code, 5) << o.output;  // the step_limit cases stop at their limit (exit 4)
   const auto rows = read_table(dir_ / "out" / "results.csv");
   ASSERT_EQ(rows.size(), 4u) << o.output;
@@ -110,7 +98,7 @@ TEST_F(Batch, ResultsTableHasOneRowPerCaseInCaseOrder) {
 }
 
 TEST_F(Batch, FailedCaseIsARowWithItsExitCode) {
-  run("batch " + models + "batch_small.toml --no-vtk --out " + (dir_ / "out").string());
+  run_capture("batch " + models + "batch_small.toml --no-vtk --out " + (dir_ / "out").string());
   const auto rows = read_table(dir_ / "out" / "results.csv");
   ASSERT_EQ(rows.size(), 4u);
   EXPECT_EQ(rows[2].at("exit_code"), "4");
@@ -124,11 +112,11 @@ TEST_F(Batch, RowEqualsTheSameCaseRunAlone) {
   std::string model = read(models + "e2e_small.toml");
   model.replace(model.find("seed = 11"), 9, "seed = 12");
   const fs::path alone = write("e2e_small_seed12.toml", model);
-  const Outcome a =
-      run("run " + alone.string() + " --threads 1 --no-vtk --out " + (dir_ / "alone").string());
+  const Outcome a = run_capture("run " + alone.string() + " --threads 1 --no-vtk --out " +
+                                (dir_ / "alone").string());
   ASSERT_EQ(a.code, 0) << a.output;
-  const Outcome b =
-      run("batch " + models + "batch_small.toml --no-vtk --jobs 2 --out " + (dir_ / "b").string());
+  const Outcome b = run_capture("batch " + models + "batch_small.toml --no-vtk --jobs 2 --out " +
+                                (dir_ / "b").string());
   const auto rows = read_table(dir_ / "b" / "results.csv");
   ASSERT_EQ(rows.size(), 4u) << b.output;
   const auto& row = rows[1];
@@ -147,7 +135,7 @@ TEST_F(Batch, UnknownOverrideKeyExitsWithTwoNamingTheBatchFileLine) {
                                                "e2e_small.toml\"\n"
                                                "[grid]\n"
                                                "\"loading.confining_stresss\" = [0, 1e6]\n");
-  const Outcome o = run("batch " + batch.string() + " --out " + (dir_ / "out").string());
+  const Outcome o = run_capture("batch " + batch.string() + " --out " + (dir_ / "out").string());
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find(batch.string() + ":3: override 'loading.confining_stresss'"),
             std::string::npos)
@@ -159,13 +147,13 @@ TEST_F(Batch, UnknownOverrideKeyExitsWithTwoNamingTheBatchFileLine) {
 TEST_F(Batch, UnknownBatchKeyAndMissingModelAreNamed) {
   const fs::path typo =
       write("typo.toml", "model = \"" + models + "e2e_small.toml\"\nouptut = \"x\"\n");
-  Outcome o = run("batch " + typo.string());
+  Outcome o = run_capture("batch " + typo.string());
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find(typo.string() + ":2: key 'ouptut': unknown key (did you mean 'output'?)"),
             std::string::npos)
       << o.output;
   const fs::path missing = write("missing.toml", "[[case]]\nmodel = \"no_such_model.toml\"\n");
-  o = run("batch " + missing.string());
+  o = run_capture("batch " + missing.string());
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find(missing.string() + ":2: key 'case[0].model'"), std::string::npos)
       << o.output;
@@ -173,14 +161,14 @@ TEST_F(Batch, UnknownBatchKeyAndMissingModelAreNamed) {
 
 TEST_F(Batch, SetOptionOverridesAModelKeyAndRejectsUnknownOnes) {
   const std::string model = models + "e2e_small.toml";
-  Outcome o = run("check " + model + " --set loading.confining_stress=2e6 --set seed=5");
+  Outcome o = run_capture("check " + model + " --set loading.confining_stress=2e6 --set seed=5");
   EXPECT_EQ(o.code, 0) << o.output;
-  o = run("check " + model + " --set solver.local_damping=1.5");
+  o = run_capture("check " + model + " --set solver.local_damping=1.5");
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find("--set: override 'solver.local_damping' of " + model + ": must be < 1"),
             std::string::npos)
       << o.output;
-  o = run("check " + model + " --set stage[3].end_time=1");
+  o = run_capture("check " + model + " --set stage[3].end_time=1");
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find("'stage' has 1 entries"), std::string::npos) << o.output;
 }

@@ -224,23 +224,12 @@ vtkNew<vtkImageData> grid_image(const VtkFrame& f) {
   return img;
 }
 
-void write_vti(vtkImageData* img, const std::filesystem::path& file) {
-  vtkNew<vtkXMLImageDataWriter> w;
+// Appended raw binary, zlib-compressed, 64-bit headers: the same for every series.
+template <class Writer>
+void write_xml(vtkDataObject* data, const std::filesystem::path& file) {
+  vtkNew<Writer> w;
   w->SetFileName(file.string().c_str());
-  w->SetInputData(img);
-  w->SetDataModeToAppended();
-  w->EncodeAppendedDataOff();
-  w->SetCompressorTypeToZLib();
-  w->SetHeaderTypeToUInt64();
-  if (w->Write() != 1 || w->GetErrorCode() != 0) {
-    throw std::runtime_error("VtkSeriesWriter: cannot write " + file.string());
-  }
-}
-
-void write_vtp(vtkPolyData* pd, const std::filesystem::path& file) {
-  vtkNew<vtkXMLPolyDataWriter> w;
-  w->SetFileName(file.string().c_str());
-  w->SetInputData(pd);
+  w->SetInputData(data);
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();
   w->SetCompressorTypeToZLib();
@@ -270,10 +259,10 @@ void VtkSeriesWriter::write(const VtkFrame& frame) {
     throw std::invalid_argument(
         "VtkSeriesWriter: every frame of a series must have a damage grid, or none");
   }
-  write_vtp(blocks_polydata(frame), dir_ / frame_file(kSeries[0], n));
-  write_vtp(contacts_polydata(frame), dir_ / frame_file(kSeries[1], n));
-  write_vtp(cracks_polydata(frame), dir_ / frame_file(kSeries[2], n));
-  if (grid_) write_vti(grid_image(frame), dir_ / frame_file(kGridSeries, n));
+  write_xml<vtkXMLPolyDataWriter>(blocks_polydata(frame), dir_ / frame_file(kSeries[0], n));
+  write_xml<vtkXMLPolyDataWriter>(contacts_polydata(frame), dir_ / frame_file(kSeries[1], n));
+  write_xml<vtkXMLPolyDataWriter>(cracks_polydata(frame), dir_ / frame_file(kSeries[2], n));
+  if (grid_) write_xml<vtkXMLImageDataWriter>(grid_image(frame), dir_ / frame_file(kGridSeries, n));
   times_.push_back(frame.time);
   write_collections();
 }
