@@ -44,7 +44,7 @@ TEST(LawRegistry, LinearElasticIsASecondLawThatNeverFails) {
   ASSERT_NE(find_law("linear_elastic"), nullptr);
   ASSERT_NE(find_law("mohr_coulomb"), nullptr);
   EXPECT_EQ(find_law("no_such_law"), nullptr);
-  LinearElastic::State st{0.0};
+  LinearElastic::State st{0.0, 0.0};
   const LinearElastic::Props p{jkn * L, jks * L};
   const auto r = LinearElastic::evaluate({1e-3, 1e-3, 0.0, L, 1e-7}, p, st);  // huge tension
   EXPECT_EQ(r.event, ContactEvent::none);
@@ -59,4 +59,13 @@ TEST(LawRegistry, EveryLawDocumentsUnitsOfItsParameters) {
       EXPECT_FALSE(p.doc.empty()) << law.name << "." << p.key;
     }
   }
+}
+
+// A contact found during the run already overlapping starts unloaded: detection must not create
+// strain energy. Its spring then works from that origin.
+TEST(MohrCoulomb, ContactFoundOverlappingStartsWithZeroForce) {
+  const MohrCoulomb::Props p{jkn * L, jks * L, 0.0, 0.0, 0.5, 0.5, 0.0};
+  auto st = MohrCoulomb::initial_state({1, L, false, -2e-6});
+  EXPECT_EQ(MohrCoulomb::evaluate({-2e-6, 0.0, 0.0, L, 1e-7}, p, st).fn, 0.0);
+  EXPECT_DOUBLE_EQ(MohrCoulomb::evaluate({-3e-6, -1e-6, 0.0, L, 1e-7}, p, st).fn, jkn * L * 1e-6);
 }

@@ -302,13 +302,15 @@ DetectionStats ContactDetector::detect(model::Model& model,
       }
     }
     // A corner of a and a corner of b meeting at one point give one contact: the lower block's
-    // (fresh is in block order, so the lower block's candidates come first).
+    // (fresh is in block order, so the lower block's candidates come first). A corner that has
+    // slid past the other corner and presses deeper than the contact there is a contact of its
+    // own: suppressing it would let it sink in unseen.
     const std::size_t n_kept = kept.size();
     for (const Candidate& cand : fresh) {
       bool duplicate = false;
       for (const Candidate& k : kept) {
         const Point r = k.point - cand.point;
-        if (dot(r, r) < d * d) duplicate = true;
+        if (dot(r, r) < d * d && cand.contact.gap >= k.contact.gap - 0.01 * d) duplicate = true;
       }
       if (duplicate) continue;
       kept.push_back(cand);
@@ -343,7 +345,9 @@ DetectionStats ContactDetector::detect(model::Model& model,
     for (; pos < order.size() && contacts[pos].law == l; ++pos) {
       const std::int64_t o = origin[order[pos]];
       old_local.push_back(o < 0 ? -1 : o - static_cast<std::int64_t>(old_begin[l]));
-      fresh_info.push_back({contacts[pos].id, contacts[pos].length, contacts[pos].bonded != 0});
+      const double spring_origin = bond_new ? 0.0 : std::min(contacts[pos].gap, 0.0);
+      fresh_info.push_back(
+          {contacts[pos].id, contacts[pos].length, contacts[pos].bonded != 0, spring_origin});
     }
     laws[l]->rebuild(old_local, fresh_info);
   }

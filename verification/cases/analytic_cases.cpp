@@ -184,6 +184,11 @@ CaseResult a4_incline(double angle_deg) {
                                       {"dilation", 0},
                                       {"residual_friction", phi}}),
                               s);
+    // Start at the static overlap under the normal weight: a block dropped onto the platen from
+    // touching would bounce (no damping) and lose its shear force at every lift-off.
+    double kn = 0.0;
+    for (std::size_t i = 0; i < m.contacts.size(); ++i) kn += solver->laws()[0]->properties(i)[0];
+    m.blocks.y[0] -= m.blocks.gravity_mass[0] * g * std::cos(theta) / kn;
     while (solver->time() < 0.02) solver->step();
     const double t1 = solver->time(), v1 = m.blocks.vx[0];
     while (solver->time() < 0.12) solver->step();

@@ -85,6 +85,10 @@ struct NewContact {
   std::uint64_t id;
   double length;
   bool bonded;
+  // m, gap at which the normal spring is unloaded: 0, except for a contact that appears during
+  // the run already overlapping, whose force starts at zero (as UDEC's incremental contacts do)
+  // so that detection never creates strain energy (PHYSICS section 10).
+  double spring_origin;
 };
 
 class LawGroup {

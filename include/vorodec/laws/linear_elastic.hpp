@@ -18,21 +18,22 @@ struct LinearElastic {
   };
   static constexpr std::array<std::string_view, 2> property_names{"kn [N/m]", "ks [N/m]"};
   struct State {
-    double fs;  // N
+    double fs;      // N
+    double origin;  // m, gap at which the normal spring is unloaded (NewContact)
   };
 
   static Params params_from(const LawParams& p) { return {p.at("jkn"), p.at("jks")}; }
   static Props sample(const Params& p, std::uint64_t seed, const NewContact& c) {
     return {p.jkn.sample(seed, c.id, 0) * c.length, p.jks.sample(seed, c.id, 1) * c.length};
   }
-  static State initial_state(const NewContact&) { return {0.0}; }
+  static State initial_state(const NewContact& c) { return {0.0, c.spring_origin}; }
   static double max_stiffness(const Props& p) { return std::max(p.kn, p.ks); }
   static double strain_energy(const Props& p, double fn, double fs) {
     return 0.5 * (fn * fn / p.kn + (p.ks > 0.0 ? fs * fs / p.ks : 0.0));
   }
   static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {
     st.fs -= p.ks * k.du_s;
-    return {-p.kn * k.gap, st.fs, ContactEvent::none, true};
+    return {-p.kn * (k.gap - st.origin), st.fs, ContactEvent::none, true};
   }
 };
 

@@ -27,13 +27,14 @@ struct MohrCoulomb {
       "tan_phi_res", "tan_psi"};
   struct State {
     double fs;     // N, shear force carried into the next step
-    double u_dil;  // m, dilation opening
+    double u_dil;  // m, gap at which the normal spring is unloaded: NewContact::spring_origin +
+                   // dilation
     bool broken;   // tension and cohesion lost, residual friction applies
   };
 
   static Params params_from(const LawParams& p);
   static Props sample(const Params& p, std::uint64_t seed, const NewContact& c);
-  static State initial_state(const NewContact& c) { return {0.0, 0.0, !c.bonded}; }
+  static State initial_state(const NewContact& c) { return {0.0, c.spring_origin, !c.bonded}; }
   static double max_stiffness(const Props& p) { return std::max(p.kn, p.ks); }
   static double strain_energy(const Props& p, double fn, double fs) {
     return 0.5 * (fn * fn / p.kn + (p.ks > 0.0 ? fs * fs / p.ks : 0.0));
