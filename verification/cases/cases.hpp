@@ -71,7 +71,8 @@ struct UndampedEnergy {
   long steps = 0;
   std::size_t blocks = 0, contacts = 0;
 };
-UndampedEnergy undamped_energy(long steps);
+// `safety` is solver.safety_factor; `shear_stiffness` (Pa/m) 0 leaves only normal springs.
+UndampedEnergy undamped_energy(long steps, double safety = 0.8, double shear_stiffness = 7.3e12);
 inline constexpr double undamped_energy_bound = 1e-2;  // on UndampedEnergy::shadow
 
 // Convergence ladders: one quantity at a sequence of discretisations, coarse to fine.

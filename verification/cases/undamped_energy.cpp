@@ -9,7 +9,7 @@
 
 namespace vorodec::verification {
 
-UndampedEnergy undamped_energy(long steps) {
+UndampedEnergy undamped_energy(long steps, double safety, double shear_stiffness) {
   const auto t0 = std::chrono::steady_clock::now();
   geometry::TessellationSettings ts;
   ts.outline = {geometry::OutlineKind::rectangle, 0.01, 0.01, 0, 0};
@@ -20,11 +20,12 @@ UndampedEnergy undamped_energy(long steps) {
   model::Model m = model::build_model(geometry::tessellate(ts), {2600.0, 2e-5, false});
   solver::SolverSettings s;
   s.local_damping = 0.0;
+  s.safety_factor = safety;
   // Mohr-Coulomb with strengths no contact reaches: elastic bonds, and no force across an open
   // unbonded gap (linear_elastic would pull every contact within the tolerance shut).
   auto solver = make_solver(m, "mohr_coulomb",
                             params({{"jkn", 1.8e13},
-                                    {"jks", 7.3e12},
+                                    {"jks", shear_stiffness},
                                     {"tension", 1e12},
                                     {"cohesion", 1e12},
                                     {"friction", 25.5},
