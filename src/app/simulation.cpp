@@ -336,7 +336,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
       model.blocks.x = good_x;
       model.blocks.y = good_y;
       model.blocks.theta = good_t;
-      model.blocks.refresh_world();  // the frame and the damage measures read world positions
+      model::refresh_world(model);  // the frame and the damage measures read world positions
     }
     output_frame("unstable");
   }

@@ -42,6 +42,7 @@ void add_block(Model& model, std::span<const Point> polygon, double density, Gro
   b.true_inertia.push_back(b.inertia.back());
   b.group.push_back(group);
   b.prescribed.push_back(group == Group::specimen ? 0 : 1);
+  b.deformable.push_back(0);
   b.cos_t.push_back(1.0);
   b.sin_t.push_back(0.0);
   if (b.corner_begin.empty()) b.corner_begin.push_back(0);

@@ -23,7 +23,7 @@ Box world_box(const Blocks& bl, std::uint32_t b, double margin) {
   Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
           -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
   for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
-    const Point p = bl.to_world(b, bl.corner[c]);
+    const Point p = bl.deformable[b] ? bl.world[c].corner : bl.to_world(b, bl.corner[c]);
     box = {std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x),
            std::max(box.y1, p.y)};
   }
@@ -98,9 +98,11 @@ struct SortKey {
   }
 };
 
-// Memory order of the step loop: law, then corner owner a, corner, b.
-SortKey step_key(const Contact& c, std::size_t index) {
-  return {std::uint64_t{c.law} << 32 | static_cast<std::uint32_t>(c.a),
+// Memory order of the step loop: law, rigid before deformable (touching a deformable block),
+// then corner owner a, corner, b.
+SortKey step_key(const Contact& c, std::size_t index, bool deformable) {
+  return {std::uint64_t{c.law} << 33 | std::uint64_t{deformable} << 32 |
+              static_cast<std::uint32_t>(c.a),
           std::uint64_t{c.corner} << 32 | static_cast<std::uint32_t>(c.b), index};
 }
 
@@ -214,7 +216,7 @@ DetectionStats ContactDetector::detect(model::Model& model,
                                        bool bond_new) {
   Blocks& bl = model.blocks;
   const double d = model.rounding_length;
-  bl.refresh_world();
+  model::refresh_world(model);
   // Existing contacts, indexed by key for lookup; their position in the old array is remembered.
   const std::vector<std::size_t> old_order = sorted_order(model.contacts, pair_key);
 
@@ -329,7 +331,12 @@ DetectionStats ContactDetector::detect(model::Model& model,
   // Sort by law then corner owner (memory order of the step loop).
   std::vector<Contact> contacts(result.size());
   for (std::size_t i = 0; i < result.size(); ++i) contacts[i] = result[i].contact;
-  const std::vector<std::size_t> order = sorted_order(contacts, step_key);
+  const std::vector<std::size_t> order =
+      sorted_order(contacts, [&](const Contact& c, std::size_t i) {
+        return step_key(c, i,
+                        bl.deformable[static_cast<std::size_t>(c.a)] ||
+                            bl.deformable[static_cast<std::size_t>(c.b)]);
+      });
   for (std::size_t i = 0; i < order.size(); ++i) contacts[i] = result[order[i]].contact;
 
   // Each law rebuilds its arrays from old local indices.
