@@ -35,6 +35,12 @@ CaseResult a7_weibull_ks();
 CaseResult a7_weibull_mean();
 CaseResult a8_local_damping();
 
+// Deformable blocks (fast: part of the unit tests too).
+CaseResult a13_patch_test();
+// A deformable column on a rigid platen under its own weight, and between platens under uniaxial
+// stress: stress and displacement against the plane-strain elastic solution.
+std::vector<CaseResult> deformable_column(double zone_size);
+
 // Published results: whole model runs (minutes), run by verification/run.sh only.
 std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::string& binary);
 
