@@ -1,17 +1,24 @@
 // Deformable blocks: zoning, zone forces, lumped masses, contact with a rigid platen, and the
 // verification cases A13 (patch test, column).
 #include <gtest/gtest.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLPolyDataReader.h>
 
 #include <cmath>
 #include <numeric>
 
 #include "cases.hpp"
+#include "run_support.hpp"
 #include "scenes.hpp"
 #include "vorodec/model/polygon.hpp"
 #include "vorodec/model/zoning.hpp"
 
 using namespace vorodec;
 using namespace vorodec::verification;
+namespace fs = std::filesystem;
 
 namespace {
 ::testing::AssertionResult passes(const CaseResult& r) {
@@ -110,4 +117,38 @@ TEST(Deformable, BlockRestingOnRigidPlatenCarriesItsWeight) {
   // The zones carry it: mean sigma_yy = -weight / 2 / width (linear in depth, zero at the top).
   const model::ZoneStress mean = model::mean_stress(m, model::Group::specimen);
   EXPECT_NEAR(mean.yy, -0.5 * weight / 0.02, 0.01 * weight / 0.02);
+}
+
+TEST(Deformable, RunIsThreadInvariantAndWritesZones) {
+  namespace t = vorodec::testing;
+  const std::string model = std::string(VORODEC_SOURCE_DIR) + "/tests/models/deformable_small.toml";
+  const auto one = t::out_dir("deformable_1"), two = t::out_dir("deformable_2");
+  ASSERT_EQ(t::run_vorodec("run " + model + " --threads 1 --out " + one.string()), 0);
+  ASSERT_EQ(t::run_vorodec("run " + model + " --threads 2 --no-vtk --out " + two.string()), 0);
+  EXPECT_EQ(t::slurp(one / "history.csv"), t::slurp(two / "history.csv"));
+  // Before the first crack, the zones' mean axial stress is the platens' axial stress
+  // (quasi-static loading).
+  const auto rows = t::read_csv(one / "history.csv");
+  int checked = 0;
+  for (const auto& r : rows) {
+    if (r[6] + r[7] > 0) break;  // cracks_tensile, cracks_shear
+    if (r[3] < 5e6) continue;    // axial_stress, Pa
+    EXPECT_NEAR(r[18], r[3], 0.02 * r[3]) << "zone_stress_yy at step " << r[0];
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+  const std::string summary = t::slurp(one / "summary.json");
+  EXPECT_GT(t::json_number(summary, "zones"), 500);
+  ASSERT_TRUE(fs::exists(one / "vtk/zones.pvd"));
+  auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+  reader->SetFileName((one / "vtk/zones_000001.vtp").string().c_str());
+  reader->Update();
+  vtkPolyData* pd = reader->GetOutput();
+  EXPECT_EQ(pd->GetNumberOfCells(), static_cast<vtkIdType>(t::json_number(summary, "zones")));
+  vtkDataArray* stress = pd->GetCellData()->GetArray("stress");
+  ASSERT_NE(stress, nullptr);
+  EXPECT_EQ(stress->GetNumberOfComponents(), 9);
+  for (const char* name : {"principal_stress_max", "principal_stress_min", "strain", "block"})
+    EXPECT_NE(pd->GetCellData()->GetArray(name), nullptr) << name;
+  fs::remove_all(t::base_dir());
 }

@@ -110,6 +110,14 @@ io::VtkFrame make_frame(const model::Model& m, const solver::Solver& solver) {
     f.contact_shear_force.push_back(c.fs);
     f.contact_state.push_back(static_cast<std::int32_t>(c.state));
   }
+  const model::Zoning& z = m.zoning;
+  for (std::size_t i = 0; i < z.zones.size(); ++i) {
+    for (const std::uint32_t g : z.zones[i].gp) f.zone_points.push_back({z.x[g], z.y[g]});
+    f.zone_block.push_back(static_cast<std::int32_t>(z.zone_block[i]));
+    const model::ZoneStress& s = z.stress[i];
+    f.zone_stress.push_back({s.xx, s.yy, s.xy, s.zz});
+    f.zone_strain.push_back({z.strain[i][0], z.strain[i][1], 0.5 * z.strain[i][2]});
+  }
   for (const laws::CrackEvent& e : solver.cracks()) {
     const model::Point mid{e.x, e.y}, t{-e.ny * 0.5 * e.length, e.nx * 0.5 * e.length};
     f.crack_begin.push_back(mid - t);
@@ -174,11 +182,15 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
       "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
       "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n  \"failure_rate\": {:.6g},\n"
       "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
-      "  \"steps\": {},\n  \"wall_time_s\": {:.3f}\n}}\n",
+      "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}\n}}\n",
       cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
       s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
       initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
-      initial_contacts, dt, s.steps, s.wall_seconds);
+      initial_contacts, dt, s.steps, s.wall_seconds,
+      s.zones ? fmt::format(",\n  \"zones\": {},\n  \"zone_stress_Pa\": {{\"xx\": {:.8g}, "
+                            "\"yy\": {:.8g}, \"xy\": {:.8g}}}",
+                            s.zones, s.zone_stress_xx, s.zone_stress_yy, s.zone_stress_xy)
+              : std::string());
 }
 
 }  // namespace
@@ -391,6 +403,13 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   summary.cycles = measure::cycle_measures(rows, stages, stalled);
   if (!summary.cycles.empty()) write_cycles(options.out / "cycles.csv", summary.cycles);
   summary.youngs_modulus = ec.youngs_modulus;
+  summary.zones = model.zoning.zones.size();
+  if (zoned) {
+    const model::ZoneStress m = model::mean_stress(model, Group::specimen);
+    summary.zone_stress_xx = -m.xx;
+    summary.zone_stress_yy = -m.yy;
+    summary.zone_stress_xy = -m.xy;
+  }
   summary.poisson_ratio = ec.poisson_ratio;
   summary.steps = solver.steps();
   summary.contacts = model.contacts.size();
