@@ -119,9 +119,13 @@ int main(int argc, char** argv) {
          "quantity for linear springs; the plain sum oscillates with the half-step offset. "
          "Bound: "
       << fmt::format("{:g}.\n", undamped_energy_bound);
-  write_ladders(out, analytic_ladders(),
-                model_ladders_wanted ? model_ladders(argv[1], argv[2]) : std::vector<Ladder>{},
-                std::filesystem::path(argv[3]).parent_path(), argv[1]);
+  std::vector<Ladder> whole_model;
+  if (model_ladders_wanted) {
+    whole_model = model_ladders(argv[1], argv[2]);
+    whole_model.push_back(deformable_ladder(argv[1], argv[2]));
+  }
+  write_ladders(out, analytic_ladders(), whole_model, std::filesystem::path(argv[3]).parent_path(),
+                argv[1]);
   std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, results.size(), argv[3]);
   return failed ? 1 : 0;
 }

@@ -129,8 +129,9 @@ std::vector<std::size_t> sorted_order(const std::vector<Contact>& contacts, Key 
 
 // Lengths of new contacts from the spacing of all contacts between the same two blocks: each
 // contact represents the joint up to halfway to its neighbours, plus the rounding length at the
-// ends (so an intact shared edge gives each end contact half its length, as in UDEC).
-void assign_lengths(std::vector<Candidate>& pair_contacts, double d) {
+// ends (so an intact shared edge gives each end contact half its length, as in UDEC). Lengths
+// are at least `min_length`.
+void assign_lengths(std::vector<Candidate>& pair_contacts, double d, double min_length) {
   const std::size_t k = pair_contacts.size();
   if (k == 1) {  // a corner pressing on a face: half a typical edge (d is 5 % of the mean edge)
     if (pair_contacts[0].contact.length == 0.0) pair_contacts[0].contact.length = 10.0 * d;
@@ -151,7 +152,7 @@ void assign_lengths(std::vector<Candidate>& pair_contacts, double d) {
     const double lo = j == 0 ? s[j].first - d : 0.5 * (s[j - 1].first + s[j].first);
     const double hi = j + 1 == k ? s[j].first + d : 0.5 * (s[j].first + s[j + 1].first);
     Contact& c = pair_contacts[s[j].second].contact;
-    if (c.length == 0.0) c.length = std::max(hi - lo, 2.0 * d);
+    if (c.length == 0.0) c.length = std::max(hi - lo, min_length);
   }
 }
 
@@ -316,7 +317,10 @@ DetectionStats ContactDetector::detect(model::Model& model,
       kept.push_back(cand);
       kept_origin.push_back(-1);
     }
-    if (kept.size() > n_kept) assign_lengths(kept, d);
+    // Rigid blocks: at least 2d per contact. Deformable blocks: the gridpoint spacing, which zoning
+    // finer than 2d would otherwise inflate (PHYSICS 7).
+    if (kept.size() > n_kept)
+      assign_lengths(kept, d, bl.deformable[pa] || bl.deformable[pb] ? 0.0 : 2.0 * d);
     for (std::size_t i = 0; i < kept.size(); ++i) {
       if (kept_origin[i] < 0) {
         kept[i].contact.id = next_id_++;

@@ -100,6 +100,9 @@ std::vector<Ladder> analytic_ladders();  // A3 period and A8 damping against the
 // The default model (models/ucs_marble.toml), one thread: UCS and E against the platen speed and
 // against the density-scaling time step, each relative to its finest run. Minutes.
 std::vector<Ladder> model_ladders(const std::string& source_dir, const std::string& binary);
+// tests/models/deformable_small.toml, elastic (strengths out of reach), one thread: the apparent
+// Young's modulus against the zone size, relative to the finest zoning. About a minute.
+Ladder deformable_ladder(const std::string& source_dir, const std::string& binary);
 
 struct NamedCase {
   std::string id;
