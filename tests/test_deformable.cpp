@@ -152,3 +152,34 @@ TEST(Deformable, RunIsThreadInvariantAndWritesZones) {
     EXPECT_NE(pd->GetCellData()->GetArray(name), nullptr) << name;
   fs::remove_all(t::base_dir());
 }
+
+TEST(Deformable, CornerArcsMatchRigidBlockRounding) {
+  // The trigonometry-free arcs of deformable blocks equal the rigid builder's at real corners;
+  // at gridpoints along an edge the arc is tangent to the edge at the gridpoint.
+  const std::vector<model::Point> poly{{0, 0}, {0.02, 0.002}, {0.024, 0.015}, {0.006, 0.02}};
+  model::Model m;
+  m.rounding_length = 5e-4;
+  model::add_block(m, poly, 2600, model::Group::specimen);
+  model::add_deformable_block(m, poly, 2600, rock, 0.004, model::Group::specimen);
+  m.blocks.refresh_world();
+  model::refresh_deformable(m);
+  const auto& bl = m.blocks;
+  std::size_t matched = 0;
+  for (std::uint32_t c = bl.corner_begin[1]; c < bl.corner_begin[2]; ++c) {
+    const model::Point p = bl.world[c].corner;
+    for (std::uint32_t k = bl.corner_begin[0]; k < bl.corner_begin[1]; ++k) {
+      const model::Point q = bl.world[k].corner;
+      if (std::hypot(p.x - q.x, p.y - q.y) > 1e-12) continue;
+      EXPECT_NEAR(bl.shape[c].radius, bl.shape[k].radius, 1e-12);
+      EXPECT_NEAR(bl.world[c].centre.x, bl.world[k].centre.x, 1e-12);
+      EXPECT_NEAR(bl.world[c].centre.y, bl.world[k].centre.y, 1e-12);
+      ++matched;
+    }
+    // The arc touches the edge that leaves the corner: its centre lies R inside that edge.
+    const model::Point e = bl.world[bl.shape[c].next].corner - p;
+    const double inside = geometry::cross(e, bl.world[c].centre - p) / std::hypot(e.x, e.y);
+    EXPECT_NEAR(inside, bl.shape[c].radius, 1e-12);
+  }
+  EXPECT_EQ(matched, poly.size());
+  EXPECT_GT(bl.corner_begin[2] - bl.corner_begin[1], poly.size());
+}

@@ -11,20 +11,17 @@ namespace vorodec::model {
 
 namespace {
 
-Point unit(Point p) {
-  return (1.0 / std::sqrt(dot(p, p))) * p;
-}
-
-// Rounded-corner arc as in model/build.cpp (PHYSICS 2.2), robust for the straight (180 degree)
-// corners that boundary gridpoints along an edge form: the inward bisector is taken as the left
-// normal of w - u, which stays defined when u + w vanishes.
-void round_gridpoint(Point prev, Point c, Point next, double d, Point& centre, double& radius) {
-  const Point u = unit(prev - c), w = unit(next - c);
-  const double half = 0.5 * std::acos(std::clamp(dot(u, w), -1.0, 1.0));
-  radius = std::min(d * std::tan(half), 4.0 * d);
+// Rounded-corner arc (PHYSICS 2.2: tangent to both edges, radius d tan(beta/2) capped at 4d as in
+// model/build.cpp) from the unit directions u (to the previous corner) and w (to the next), without
+// trigonometry (this runs for every boundary gridpoint every step). With cos(beta) = u.w:
+// tan(beta/2) = |u x w| / (1 + u.w), and the centre lies at R / sin(beta/2) along the inward
+// bisector, i.e. at R perp(w - u) / (1 - u.w). perp(w - u) stays defined at straight (180 degree)
+// corners, which boundary gridpoints along an edge form.
+void round_gridpoint(Point u, Point c, Point w, double d, Point& centre, double& radius) {
+  const double cosine = dot(u, w), sine = std::abs(cross(u, w));
+  radius = sine >= 4.0 * (1.0 + cosine) ? 4.0 * d : d * sine / (1.0 + cosine);
   const Point f = w - u;
-  const Point bis = unit(Point{-f.y, f.x});
-  centre = c + (radius / std::sin(half)) * bis;
+  centre = c + (radius / (1.0 - cosine)) * Point{-f.y, f.x};
 }
 
 }  // namespace
@@ -122,23 +119,28 @@ void refresh_deformable(Model& model) {
     bl.vy[b] = mv / m;
     bl.kin[b] = {bl.x[b], bl.y[b], bl.vx[b], bl.vy[b], 0.0};
     const std::uint32_t c0 = bl.corner_begin[b], c1 = bl.corner_begin[b + 1];
-    const auto at = [&](std::uint32_t c) {
-      const auto g = static_cast<std::size_t>(z.corner_gp[c]);
-      return Point{z.x[g], z.y[g]};
-    };
     for (std::uint32_t c = c0; c < c1; ++c) {
-      const Point p = at(c), prev = at(c == c0 ? c1 - 1 : c - 1), next = at(bl.shape[c].next);
-      bl.world[c].corner = p;
-      round_gridpoint(prev, p, next, d, bl.world[c].centre, bl.shape[c].radius);
+      const auto g = static_cast<std::size_t>(z.corner_gp[c]);
+      bl.world[c].corner = {z.x[g], z.y[g]};
+    }
+    // Unit edge directions, kept in the shape's inverse lengths and reused by the corners.
+    thread_local std::vector<Point> tangent;
+    tangent.resize(c1 - c0);
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      const Point e = bl.world[bl.shape[c].next].corner - bl.world[c].corner;
+      const double inv = 1.0 / std::sqrt(dot(e, e));
+      bl.shape[c].inv_length = inv;
+      tangent[c - c0] = inv * e;
     }
     for (std::uint32_t c = c0; c < c1; ++c) {
-      const std::uint32_t n = bl.shape[c].next;
-      const Point e = bl.world[n].corner - bl.world[c].corner;
-      const double inv = 1.0 / std::sqrt(dot(e, e));
-      const Point t = inv * e;
-      bl.shape[c].inv_length = inv;
-      bl.shape[c].s0 = dot(bl.world[c].centre - bl.world[c].corner, t);
-      bl.shape[c].s1 = dot(bl.world[n].centre - bl.world[c].corner, t);
+      const Point t_in = tangent[(c == c0 ? c1 : c) - 1 - c0], t_out = tangent[c - c0];
+      round_gridpoint(-1.0 * t_in, bl.world[c].corner, t_out, d, bl.world[c].centre,
+                      bl.shape[c].radius);
+    }
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      const Point t = tangent[c - c0], p = bl.world[c].corner;
+      bl.shape[c].s0 = dot(bl.world[c].centre - p, t);
+      bl.shape[c].s1 = dot(bl.world[bl.shape[c].next].centre - p, t);
     }
   }
 }
