@@ -20,17 +20,19 @@ int main(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr,
                  "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
-                 "[--ladders]\n",
+                 "[--ladders] [--deformable-ladder]\n",
                  argv[0]);
     return 2;
   }
-  bool analytic_only = false, model_ladders_wanted = false;
+  bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false;
   for (int i = 4; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--analytic-only") {
       analytic_only = true;
     } else if (flag == "--ladders") {
-      model_ladders_wanted = true;
+      model_ladders_wanted = deformable_ladder_wanted = true;
+    } else if (flag == "--deformable-ladder") {
+      deformable_ladder_wanted = true;
     } else {
       std::fprintf(stderr, "unknown option '%s'\n", argv[i]);
       return 2;
@@ -120,10 +122,8 @@ int main(int argc, char** argv) {
          "Bound: "
       << fmt::format("{:g}.\n", undamped_energy_bound);
   std::vector<Ladder> whole_model;
-  if (model_ladders_wanted) {
-    whole_model = model_ladders(argv[1], argv[2]);
-    whole_model.push_back(deformable_ladder(argv[1], argv[2]));
-  }
+  if (model_ladders_wanted) whole_model = model_ladders(argv[1], argv[2]);
+  if (deformable_ladder_wanted) whole_model.push_back(deformable_ladder(argv[1], argv[2]));
   write_ladders(out, analytic_ladders(), whole_model, std::filesystem::path(argv[3]).parent_path(),
                 argv[1]);
   std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, results.size(), argv[3]);

@@ -1,6 +1,7 @@
 #pragma once
-// Explicit central-difference integration of rigid blocks with Cundall local damping (PHYSICS 1.3,
-// 5.1, 6.1). Each step: contact geometry -> laws -> block forces -> damping -> integration.
+// Explicit central-difference integration of rigid blocks and of the gridpoints of deformable
+// blocks (src/solver/gridpoints.cpp) with Cundall local damping (PHYSICS 1.3, 5.1, 6, 7). Each
+// step: contact geometry -> laws -> block and gridpoint forces -> damping -> integration.
 #include <memory>
 #include <stdexcept>
 #include <vector>
