@@ -101,7 +101,8 @@ void refresh_deformable(Model& model) {
   Zoning& z = model.zoning;
   const double d = model.rounding_length;
   const auto nd = static_cast<std::int64_t>(z.blocks.size());
-#pragma omp parallel for schedule(static)
+  // Small models stay on one thread: a parallel region costs more than their work.
+#pragma omp parallel for schedule(static) if (nd >= 64)
   for (std::int64_t k = 0; k < nd; ++k) {
     const std::uint32_t b = z.blocks[static_cast<std::size_t>(k)];
     double m = 0, mx = 0, my = 0, mu = 0, mv = 0;
@@ -148,7 +149,7 @@ void refresh_deformable(Model& model) {
 void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
   const auto nz = static_cast<std::int64_t>(z.zones.size());
   const double *x = z.x.data(), *y = z.y.data(), *x0 = z.x0.data(), *y0 = z.y0.data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nz >= 2048)
   for (std::int64_t i = 0; i < nz; ++i) {
     const auto zi = static_cast<std::size_t>(i);
     const Zone& q = z.zones[zi];
@@ -173,7 +174,7 @@ void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& ou
   const auto ng = static_cast<std::int64_t>(z.gridpoints());
   out_fx.resize(z.gridpoints());
   out_fy.resize(z.gridpoints());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (ng >= 2048)
   for (std::int64_t gi = 0; gi < ng; ++gi) {
     const auto g = static_cast<std::size_t>(gi);
     double fx = 0, fy = 0;

@@ -53,7 +53,7 @@ void Solver::integrate_gridpoints() {
   const double alpha = settings_.local_damping, dt = dt_;
   const model::Point g = settings_.gravity;
   double w_boundary = 0, w_body = 0, w_damp = 0;
-#pragma omp parallel for schedule(static) reduction(+ : w_boundary, w_body, w_damp)
+#pragma omp parallel for schedule(static) if (ng >= 2048) reduction(+ : w_boundary, w_body, w_damp)
   for (std::int64_t gi = 0; gi < ng; ++gi) {
     const auto i = static_cast<std::size_t>(gi);
     double u = z.vx[i], v = z.vy[i];
