@@ -158,3 +158,19 @@ TEST(BadInput, NonPositiveFixedTimeStepIsRejected) {
                replace(good_model, "[[stage]]\n", "[solver]\nfixed_time_step = 0\n[[stage]]\n"),
                "solver.fixed_time_step", 15, "must be > 0"));
 }
+
+TEST(BadInput, NonPositiveZoneSizeIsRejected) {
+  EXPECT_TRUE(
+      rejected("zone_size",
+               replace(good_model, "density = 2600",
+                       "density = 2600\ndeformable = true\nzone_size = 0\nE = 40e9\nnu = 0.2"),
+               "blocks.zone_size", 9, "must be > 0"));
+}
+
+TEST(BadInput, IncompressiblePoissonRatioIsRejected) {
+  EXPECT_TRUE(
+      rejected("poisson_ratio",
+               replace(good_model, "density = 2600",
+                       "density = 2600\ndeformable = true\nzone_size = 0.002\nE = 40e9\nnu = 0.5"),
+               "blocks.nu", 11, "must be > -1 and < 0.5"));
+}

@@ -21,17 +21,19 @@ int main(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr,
                  "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
-                 "[--ladders]\n",
+                 "[--ladders] [--deformable-ladder]\n",
                  argv[0]);
     return 2;
   }
-  bool analytic_only = false, model_ladders_wanted = false;
+  bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false;
   for (int i = 4; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--analytic-only") {
       analytic_only = true;
     } else if (flag == "--ladders") {
-      model_ladders_wanted = true;
+      model_ladders_wanted = deformable_ladder_wanted = true;
+    } else if (flag == "--deformable-ladder") {
+      deformable_ladder_wanted = true;
     } else {
       std::fprintf(stderr, "unknown option '%s'\n", argv[i]);
       return 2;
@@ -42,6 +44,13 @@ int main(int argc, char** argv) {
     results.push_back(c.run());
     std::fprintf(stderr, "%s %s: %s\n", c.id.c_str(), results.back().name.c_str(),
                  results.back().pass() ? "pass" : "FAIL");
+  }
+  for (auto& r : deformable_column(0.01)) {
+    std::fprintf(stderr, "%s %s: %s\n", r.id.c_str(), r.name.c_str(),
+                 r.informational ? "info"
+                 : r.pass()      ? "pass"
+                                 : "FAIL");
+    results.push_back(r);
   }
   if (!analytic_only)
     for (const auto& published :
@@ -137,9 +146,11 @@ int main(int argc, char** argv) {
            "rounded corner, so closed paths do net work. A smaller safety factor reduces it in "
            "proportion.\n";
   }
-  write_ladders(out, analytic_ladders(),
-                model_ladders_wanted ? model_ladders(argv[1], argv[2]) : std::vector<Ladder>{},
-                std::filesystem::path(argv[3]).parent_path(), argv[1]);
+  std::vector<Ladder> whole_model;
+  if (model_ladders_wanted) whole_model = model_ladders(argv[1], argv[2]);
+  if (deformable_ladder_wanted) whole_model.push_back(deformable_ladder(argv[1], argv[2]));
+  write_ladders(out, analytic_ladders(), whole_model, std::filesystem::path(argv[3]).parent_path(),
+                argv[1]);
   std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, results.size(), argv[3]);
   return failed ? 1 : 0;
 }

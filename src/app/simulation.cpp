@@ -51,7 +51,12 @@ double mean_edge(const geometry::Tessellation& t) {
 PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessellation& tess) {
   PreparedModel s;
   const double d = cfg.rounding_length > 0 ? cfg.rounding_length : 0.05 * mean_edge(tess);
-  s.model = std::make_unique<model::Model>(model::build_model(tess, {cfg.density, d, true}));
+  std::optional<model::DeformableBuild> deformable;
+  if (cfg.deformable.enabled)
+    deformable = model::DeformableBuild{
+        cfg.deformable.zone_size, {cfg.deformable.youngs_modulus, cfg.deformable.poisson_ratio}};
+  s.model =
+      std::make_unique<model::Model>(model::build_model(tess, {cfg.density, d, true}, deformable));
   std::vector<std::unique_ptr<laws::LawGroup>> groups;
   for (const io::LawChoice* choice : {&cfg.joints, &cfg.platens})
     groups.push_back(laws::find_law(choice->name)->make(choice->params, cfg.seed));
@@ -82,8 +87,14 @@ io::VtkFrame make_frame(const model::Model& m, const solver::Solver& solver) {
   const auto& bl = m.blocks;
   for (std::uint32_t b = 0; b < bl.size(); ++b) {
     f.block_offsets.push_back(static_cast<std::uint32_t>(f.block_points.size()));
-    for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c)
-      f.block_points.push_back(bl.to_world(b, bl.corner[c]));
+    for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
+      if (bl.deformable[b]) {
+        const auto g = static_cast<std::size_t>(m.zoning.corner_gp[c]);
+        f.block_points.push_back({m.zoning.x[g], m.zoning.y[g]});
+      } else {
+        f.block_points.push_back(bl.to_world(b, bl.corner[c]));
+      }
+    }
     f.block_id.push_back(static_cast<std::int32_t>(b));
     f.block_group.push_back(static_cast<std::int32_t>(bl.group[b]));
     f.block_velocity.push_back({bl.vx[b], bl.vy[b]});
@@ -98,6 +109,14 @@ io::VtkFrame make_frame(const model::Model& m, const solver::Solver& solver) {
     f.contact_normal_force.push_back(c.fn);
     f.contact_shear_force.push_back(c.fs);
     f.contact_state.push_back(static_cast<std::int32_t>(c.state));
+  }
+  const model::Zoning& z = m.zoning;
+  for (std::size_t i = 0; i < z.zones.size(); ++i) {
+    for (const std::uint32_t g : z.zones[i].gp) f.zone_points.push_back({z.x[g], z.y[g]});
+    f.zone_block.push_back(static_cast<std::int32_t>(z.zone_block[i]));
+    const model::ZoneStress& s = z.stress[i];
+    f.zone_stress.push_back({s.xx, s.yy, s.xy, s.zz});
+    f.zone_strain.push_back({z.strain[i][0], z.strain[i][1], 0.5 * z.strain[i][2]});
   }
   for (const laws::CrackEvent& e : solver.cracks()) {
     const model::Point mid{e.x, e.y}, t{-e.ny * 0.5 * e.length, e.nx * 0.5 * e.length};
@@ -163,11 +182,15 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
       "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
       "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n  \"failure_rate\": {:.6g},\n"
       "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
-      "  \"steps\": {},\n  \"wall_time_s\": {:.3f}\n}}\n",
+      "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}\n}}\n",
       cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
       s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
       initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
-      initial_contacts, dt, s.steps, s.wall_seconds);
+      initial_contacts, dt, s.steps, s.wall_seconds,
+      s.zones ? fmt::format(",\n  \"zones\": {},\n  \"zone_stress_Pa\": {{\"xx\": {:.8g}, "
+                            "\"yy\": {:.8g}, \"xy\": {:.8g}}}",
+                            s.zones, s.zone_stress_xx, s.zone_stress_yy, s.zone_stress_xy)
+              : std::string());
 }
 
 }  // namespace
@@ -197,24 +220,28 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   const loading::SpecimenBoundary boundary(model);
   const double sigma3 = cfg.load_path.confining_stress;
 
-  const std::vector<std::string> header{"step",
-                                        "time",
-                                        "axial_strain",
-                                        "axial_stress",
-                                        "lateral_strain",
-                                        "volumetric_strain",
-                                        "cracks_tensile",
-                                        "cracks_shear",
-                                        "failure_rate",
-                                        "damage_density",
-                                        "p21",
-                                        "boundary_work",
-                                        "strain_energy",
-                                        "kinetic_energy",
-                                        "damping_energy",
-                                        "friction_energy",
-                                        "breakage_energy",
-                                        "stage"};
+  std::vector<std::string> header{"step",
+                                  "time",
+                                  "axial_strain",
+                                  "axial_stress",
+                                  "lateral_strain",
+                                  "volumetric_strain",
+                                  "cracks_tensile",
+                                  "cracks_shear",
+                                  "failure_rate",
+                                  "damage_density",
+                                  "p21",
+                                  "boundary_work",
+                                  "strain_energy",
+                                  "kinetic_energy",
+                                  "damping_energy",
+                                  "friction_energy",
+                                  "breakage_energy",
+                                  "stage"};
+  // Deformable specimens: the zones' area-weighted mean stress (compression positive, Pa).
+  const bool zoned = !model.zoning.empty();
+  if (zoned)
+    header.insert(header.end() - 1, {"zone_stress_xx", "zone_stress_yy", "zone_stress_xy"});
   io::CsvWriter history(options.out / "history.csv", header);
   std::unique_ptr<io::VtkSeriesWriter> vtk;
   if (options.write_vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options.out / "vtk");
@@ -248,12 +275,19 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         dmg.damage_density,
         dmg.p21,
         e.boundary_work,
-        solver.contact_strain_energy(),
+        solver.contact_strain_energy() + (zoned ? solver.zone_strain_energy() : 0.0),
         solver.kinetic_energy(),
         e.damping,
         e.slip,
         e.breakage};
-    history.row(row, stage);
+    if (zoned) {
+      const model::ZoneStress m = model::mean_stress(model, Group::specimen);
+      std::vector<double> full(std::begin(row), std::end(row));
+      full.insert(full.end(), {-m.xx, -m.yy, -m.xy});
+      history.row(full, stage);
+    } else {
+      history.row(row, stage);
+    }
     h_strain.push_back(state.axial_strain);
     h_stress.push_back(state.axial_stress);
     h_lateral.push_back(state.lateral_strain);
@@ -276,6 +310,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   const long step_limit = options.max_steps > 0 ? options.max_steps : cfg.max_steps;
   double v = 0.0, peak = 0.0, trough = 0.0;
   std::vector<double> good_x, good_y, good_t;  // last state that passed the stability check
+  std::vector<double> good_gx, good_gy;        // and its gridpoints
   std::vector<bool> stalled(stages.size(), false);
   bool stop = false;
   int resume_at = -1;  // a stalled cyclic block resumes here after its unloading
@@ -307,6 +342,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
           good_x = model.blocks.x;
           good_y = model.blocks.y;
           good_t = model.blocks.theta;
+          good_gx = model.zoning.x;
+          good_gy = model.zoning.y;
         }
         peak = std::max(peak, state.axial_stress);
         trough = std::min(trough, state.axial_stress);
@@ -336,7 +373,9 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
       model.blocks.x = good_x;
       model.blocks.y = good_y;
       model.blocks.theta = good_t;
-      model.blocks.refresh_world();  // the frame and the damage measures read world positions
+      model.zoning.x = good_gx;
+      model.zoning.y = good_gy;
+      model::refresh_world(model);  // the frame and the damage measures read world positions
     }
     output_frame("unstable");
   }
@@ -364,6 +403,13 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   summary.cycles = measure::cycle_measures(rows, stages, stalled);
   if (!summary.cycles.empty()) write_cycles(options.out / "cycles.csv", summary.cycles);
   summary.youngs_modulus = ec.youngs_modulus;
+  summary.zones = model.zoning.zones.size();
+  if (zoned) {
+    const model::ZoneStress m = model::mean_stress(model, Group::specimen);
+    summary.zone_stress_xx = -m.xx;
+    summary.zone_stress_yy = -m.yy;
+    summary.zone_stress_xy = -m.xy;
+  }
   summary.poisson_ratio = ec.poisson_ratio;
   summary.steps = solver.steps();
   summary.contacts = model.contacts.size();

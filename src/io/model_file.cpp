@@ -235,6 +235,15 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
 
   TomlSection blocks = top.sub("blocks");
   cfg.density = blocks.positive("density", laws::required);
+  cfg.deformable.enabled = blocks.boolean("deformable", false);
+  if (cfg.deformable.enabled) {
+    cfg.deformable.zone_size = blocks.positive("zone_size", laws::required);
+    cfg.deformable.youngs_modulus = blocks.positive("E", laws::required);
+    cfg.deformable.poisson_ratio = blocks.number("nu", laws::required);
+    if (!(cfg.deformable.poisson_ratio > -1.0 && cfg.deformable.poisson_ratio < 0.5))
+      blocks.fail("nu",
+                  fmt::format("must be > -1 and < 0.5 (got {})", cfg.deformable.poisson_ratio));
+  }
   blocks.finish();
 
   TomlSection joints = top.sub("joints");

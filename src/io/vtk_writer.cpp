@@ -16,8 +16,10 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -29,6 +31,7 @@ namespace {
 
 constexpr std::array<const char*, 3> kSeries = {"blocks", "contacts", "cracks"};
 constexpr const char* kGridSeries = "damage";
+constexpr const char* kZoneSeries = "zones";
 
 std::string frame_file(const char* series, std::size_t frame) {
   char buf[64];
@@ -86,6 +89,10 @@ void validate(const VtkFrame& f) {
     throw std::invalid_argument("VtkSeriesWriter: VtkFrame::grid.cell must be positive");
   for (const auto& field : g.fields)
     require_size(field.values.size(), g.nx * g.ny, ("grid field " + field.name).c_str());
+  const std::size_t nz = f.zone_block.size();
+  require_size(f.zone_points.size(), 3 * nz, "zone_points");
+  require_size(f.zone_stress.size(), nz, "zone_stress");
+  require_size(f.zone_strain.size(), nz, "zone_strain");
 }
 
 vtkNew<vtkPoints> make_points(std::size_t n) {
@@ -211,6 +218,53 @@ vtkNew<vtkPolyData> cracks_polydata(const VtkFrame& f) {
   return pd;
 }
 
+// An array of n 9-component (3 x 3) tensors, filled by the caller.
+vtkNew<vtkDoubleArray> tensor_array(const char* name, std::size_t n) {
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(9);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  return a;
+}
+
+// Constant-strain triangles with their stress, principal stresses and strain.
+vtkNew<vtkPolyData> zones_polydata(const VtkFrame& f) {
+  const std::size_t nz = f.zone_block.size();
+  auto pts = make_points(3 * nz);
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(static_cast<vtkIdType>(nz), static_cast<vtkIdType>(3 * nz));
+  auto stress = tensor_array("stress", nz), strain = tensor_array("strain", nz);
+  std::vector<double> s1(nz), s2(nz), angle(nz);
+  for (std::size_t z = 0; z < nz; ++z) {
+    for (std::size_t k = 0; k < 3; ++k) set_point(pts, 3 * z + k, f.zone_points[3 * z + k]);
+    const auto base = static_cast<vtkIdType>(3 * z);
+    const vtkIdType ids[3] = {base, base + 1, base + 2};
+    polys->InsertNextCell(3, ids);
+    const auto& s = f.zone_stress[z];
+    const auto& e = f.zone_strain[z];
+    const double st[9] = {s[0], s[2], 0, s[2], s[1], 0, 0, 0, s[3]};
+    const double et[9] = {e[0], e[2], 0, e[2], e[1], 0, 0, 0, 0};
+    stress->SetTypedTuple(static_cast<vtkIdType>(z), st);
+    strain->SetTypedTuple(static_cast<vtkIdType>(z), et);
+    const double c = 0.5 * (s[0] + s[1]), r = std::hypot(0.5 * (s[0] - s[1]), s[2]);
+    s1[z] = c + r;  // in-plane principal stresses, tension positive
+    s2[z] = c - r;
+    angle[z] = 0.5 * std::atan2(2 * s[2], s[0] - s[1]) * 180.0 / std::numbers::pi;
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetPolys(polys);
+  auto* cd = pd->GetCellData();
+  cd->AddArray(int_array("block", f.zone_block));
+  cd->AddArray(stress);
+  cd->AddArray(double_array("principal_stress_max", s1));
+  cd->AddArray(double_array("principal_stress_min", s2));
+  cd->AddArray(double_array("principal_angle_deg", angle));
+  cd->AddArray(strain);
+  add_time(pd, f.time);
+  return pd;
+}
+
 // A 2D image of nx x ny cells (nx + 1 by ny + 1 points) in the z = 0 plane.
 vtkNew<vtkImageData> grid_image(const VtkFrame& f) {
   const VtkGrid& g = f.grid;
@@ -259,10 +313,17 @@ void VtkSeriesWriter::write(const VtkFrame& frame) {
     throw std::invalid_argument(
         "VtkSeriesWriter: every frame of a series must have a damage grid, or none");
   }
+  const bool zones = !frame.zone_block.empty();
+  if (n == 0) zones_ = zones;
+  if (zones != zones_)
+    throw std::invalid_argument(
+        "VtkSeriesWriter: every frame of a series must have zones, or none");
   write_xml<vtkXMLPolyDataWriter>(blocks_polydata(frame), dir_ / frame_file(kSeries[0], n));
   write_xml<vtkXMLPolyDataWriter>(contacts_polydata(frame), dir_ / frame_file(kSeries[1], n));
   write_xml<vtkXMLPolyDataWriter>(cracks_polydata(frame), dir_ / frame_file(kSeries[2], n));
   if (grid_) write_xml<vtkXMLImageDataWriter>(grid_image(frame), dir_ / frame_file(kGridSeries, n));
+  if (zones_)
+    write_xml<vtkXMLPolyDataWriter>(zones_polydata(frame), dir_ / frame_file(kZoneSeries, n));
   times_.push_back(frame.time);
   write_collections();
 }
@@ -272,6 +333,7 @@ void VtkSeriesWriter::write(const VtkFrame& frame) {
 void VtkSeriesWriter::write_collections() const {
   std::vector<const char*> series_list(kSeries.begin(), kSeries.end());
   if (grid_) series_list.push_back(kGridSeries);
+  if (zones_) series_list.push_back(kZoneSeries);
   for (const char* series : series_list) {
     const auto target = dir_ / (std::string(series) + ".pvd");
     auto tmp = target;

@@ -47,12 +47,27 @@ SpecimenBoundary::SpecimenBoundary(const model::Model& model) {
 
 void SpecimenBoundary::apply_confinement(model::Model& model, double sigma3) const {
   auto& bl = model.blocks;
+  auto& z = model.zoning;
   for (const BoundaryEdge& e : edges_) {
     bl.fx[e.block] = bl.fy[e.block] = bl.moment[e.block] = 0.0;
+    if (bl.deformable[e.block]) {
+      for (const auto g : {z.corner_gp[e.corner], z.corner_gp[bl.next_corner(e.block, e.corner)]})
+        z.fx[static_cast<std::size_t>(g)] = z.fy[static_cast<std::size_t>(g)] = 0.0;
+    }
   }
   if (sigma3 == 0.0) return;
   for (const BoundaryEdge& e : edges_) {
     const std::uint32_t b = e.block;
+    if (bl.deformable[b]) {  // half the edge's traction force to each end gridpoint
+      const auto g0 = static_cast<std::size_t>(z.corner_gp[e.corner]);
+      const auto g1 = static_cast<std::size_t>(z.corner_gp[bl.next_corner(b, e.corner)]);
+      const Point f{-0.5 * sigma3 * (z.y[g1] - z.y[g0]), 0.5 * sigma3 * (z.x[g1] - z.x[g0])};
+      for (const std::size_t g : {g0, g1}) {
+        z.fx[g] += f.x;
+        z.fy[g] += f.y;
+      }
+      continue;
+    }
     const Point p0 = bl.to_world(b, bl.corner[e.corner]);
     const Point p1 = bl.to_world(b, bl.corner[bl.next_corner(b, e.corner)]);
     // f = -sigma3 n L with n L = (dy, -dx) for a counter-clockwise edge.

@@ -42,6 +42,7 @@ void add_block(Model& model, std::span<const Point> polygon, double density, Gro
   b.true_inertia.push_back(b.inertia.back());
   b.group.push_back(group);
   b.prescribed.push_back(group == Group::specimen ? 0 : 1);
+  b.deformable.push_back(0);
   b.cos_t.push_back(1.0);
   b.sin_t.push_back(0.0);
   if (b.corner_begin.empty()) b.corner_begin.push_back(0);
@@ -91,7 +92,8 @@ void Blocks::refresh_world() {
   }
 }
 
-Model build_model(const geometry::Tessellation& tess, const BuildSettings& settings) {
+Model build_model(const geometry::Tessellation& tess, const BuildSettings& settings,
+                  const std::optional<DeformableBuild>& deformable) {
   Model model;
   model.rounding_length = settings.rounding_length;
   std::vector<Point> poly;
@@ -105,7 +107,11 @@ Model build_model(const geometry::Tessellation& tess, const BuildSettings& setti
       ymin = std::min(ymin, poly.back().y);
       ymax = std::max(ymax, poly.back().y);
     }
-    add_block(model, poly, settings.density, Group::specimen);
+    if (deformable)
+      add_deformable_block(model, poly, settings.density, deformable->material,
+                           deformable->zone_size, Group::specimen);
+    else
+      add_block(model, poly, settings.density, Group::specimen);
   }
   if (settings.platens) {
     // Platens overhang the specimen by half its width; their mass never enters (velocity

@@ -23,7 +23,7 @@ Box world_box(const Blocks& bl, std::uint32_t b, double margin) {
   Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
           -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
   for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
-    const Point p = bl.to_world(b, bl.corner[c]);
+    const Point p = bl.deformable[b] ? bl.world[c].corner : bl.to_world(b, bl.corner[c]);
     box = {std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x),
            std::max(box.y1, p.y)};
   }
@@ -98,9 +98,11 @@ struct SortKey {
   }
 };
 
-// Memory order of the step loop: law, then corner owner a, corner, b.
-SortKey step_key(const Contact& c, std::size_t index) {
-  return {std::uint64_t{c.law} << 32 | static_cast<std::uint32_t>(c.a),
+// Memory order of the step loop: law, rigid before deformable (touching a deformable block),
+// then corner owner a, corner, b.
+SortKey step_key(const Contact& c, std::size_t index, bool deformable) {
+  return {std::uint64_t{c.law} << 33 | std::uint64_t{deformable} << 32 |
+              static_cast<std::uint32_t>(c.a),
           std::uint64_t{c.corner} << 32 | static_cast<std::uint32_t>(c.b), index};
 }
 
@@ -127,8 +129,9 @@ std::vector<std::size_t> sorted_order(const std::vector<Contact>& contacts, Key 
 
 // Lengths of new contacts from the spacing of all contacts between the same two blocks: each
 // contact represents the joint up to halfway to its neighbours, plus the rounding length at the
-// ends (so an intact shared edge gives each end contact half its length, as in UDEC).
-void assign_lengths(std::vector<Candidate>& pair_contacts, double d) {
+// ends (so an intact shared edge gives each end contact half its length, as in UDEC). Lengths
+// are at least `min_length`.
+void assign_lengths(std::vector<Candidate>& pair_contacts, double d, double min_length) {
   const std::size_t k = pair_contacts.size();
   if (k == 1) {  // a corner pressing on a face: half a typical edge (d is 5 % of the mean edge)
     if (pair_contacts[0].contact.length == 0.0) pair_contacts[0].contact.length = 10.0 * d;
@@ -149,7 +152,7 @@ void assign_lengths(std::vector<Candidate>& pair_contacts, double d) {
     const double lo = j == 0 ? s[j].first - d : 0.5 * (s[j - 1].first + s[j].first);
     const double hi = j + 1 == k ? s[j].first + d : 0.5 * (s[j].first + s[j + 1].first);
     Contact& c = pair_contacts[s[j].second].contact;
-    if (c.length == 0.0) c.length = std::max(hi - lo, 2.0 * d);
+    if (c.length == 0.0) c.length = std::max(hi - lo, min_length);
   }
 }
 
@@ -214,7 +217,7 @@ DetectionStats ContactDetector::detect(model::Model& model,
                                        bool bond_new) {
   Blocks& bl = model.blocks;
   const double d = model.rounding_length;
-  bl.refresh_world();
+  model::refresh_world(model);
   // Existing contacts, indexed by key for lookup; their position in the old array is remembered.
   const std::vector<std::size_t> old_order = sorted_order(model.contacts, pair_key);
 
@@ -316,7 +319,10 @@ DetectionStats ContactDetector::detect(model::Model& model,
       kept.push_back(cand);
       kept_origin.push_back(-1);
     }
-    if (kept.size() > n_kept) assign_lengths(kept, d);
+    // Rigid blocks: at least 2d per contact. Deformable blocks: the gridpoint spacing, which zoning
+    // finer than 2d would otherwise inflate (PHYSICS 7).
+    if (kept.size() > n_kept)
+      assign_lengths(kept, d, bl.deformable[pa] || bl.deformable[pb] ? 0.0 : 2.0 * d);
     for (std::size_t i = 0; i < kept.size(); ++i) {
       if (kept_origin[i] < 0) {
         kept[i].contact.id = next_id_++;
@@ -331,7 +337,12 @@ DetectionStats ContactDetector::detect(model::Model& model,
   // Sort by law then corner owner (memory order of the step loop).
   std::vector<Contact> contacts(result.size());
   for (std::size_t i = 0; i < result.size(); ++i) contacts[i] = result[i].contact;
-  const std::vector<std::size_t> order = sorted_order(contacts, step_key);
+  const std::vector<std::size_t> order =
+      sorted_order(contacts, [&](const Contact& c, std::size_t i) {
+        return step_key(c, i,
+                        bl.deformable[static_cast<std::size_t>(c.a)] ||
+                            bl.deformable[static_cast<std::size_t>(c.b)]);
+      });
   for (std::size_t i = 0; i < order.size(); ++i) contacts[i] = result[order[i]].contact;
 
   // Each law rebuilds its arrays from old local indices.

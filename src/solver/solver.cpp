@@ -44,8 +44,18 @@ void Solver::detect(bool bond_new) {
   const auto& bl = model_.blocks;
   const std::size_t nb = bl.size(), nc = model_.contacts.size();
   law_begin_.assign(laws_.size() + 1, 0);
-  for (const auto& c : model_.contacts) ++law_begin_[c.law + 1u];
+  std::vector<std::size_t> deformable(laws_.size(), 0);
+  for (const auto& c : model_.contacts) {
+    ++law_begin_[c.law + 1u];
+    if (bl.deformable[static_cast<std::size_t>(c.a)] ||
+        bl.deformable[static_cast<std::size_t>(c.b)])
+      ++deformable[c.law];
+  }
   for (std::size_t l = 0; l < laws_.size(); ++l) law_begin_[l + 1] += law_begin_[l];
+  // The detector puts each law's deformable contacts after its rigid ones.
+  deformable_begin_.resize(laws_.size());
+  for (std::size_t l = 0; l < laws_.size(); ++l)
+    deformable_begin_[l] = law_begin_[l + 1] - deformable[l];
   forces_.resize(nc);
   cfx_.resize(nb, 0.0);
   cfy_.resize(nb, 0.0);
@@ -78,7 +88,7 @@ void Solver::partition() {
   std::vector<int> part(nb, none);
   for (std::size_t l = 0; l < laws_.size(); ++l) {
     for (int t = 0; t < chunks_; ++t) {
-      const auto [lo, hi] = laws::chunk_range(law_begin_[l], law_begin_[l + 1], t, chunks_);
+      const auto [lo, hi] = laws::chunk_range(law_begin_[l], deformable_begin_[l], t, chunks_);
       for (std::size_t i = lo; i < hi; ++i) {
         for (const auto blk : {model_.contacts[i].a, model_.contacts[i].b}) {
           int& p = part[static_cast<std::size_t>(blk)];
@@ -118,8 +128,9 @@ void Solver::compute_time_step() {
   const double s = settings_.safety_factor;
   const double target = settings_.time_step;
   double dt = std::numeric_limits<double>::max();
+  if (!model_.zoning.empty()) dt = gridpoint_time_step();
   for (std::size_t b = 0; b < nb; ++b) {
-    if (bl.prescribed[b] || kt[b] == 0.0) continue;
+    if (bl.prescribed[b] || bl.deformable[b] || kt[b] == 0.0) continue;
     if (target > 0.0) {  // density scaling: the smallest inertia that makes `target` stable
       bl.mass[b] = std::max(bl.gravity_mass[b], kt[b] * target * target / (s * s));
       bl.inertia[b] = std::max(bl.true_inertia[b], kr[b] * target * target / (s * s));
@@ -146,7 +157,7 @@ void Solver::compute_time_step() {
 void Solver::step() {
   auto& bl = model_.blocks;
   const auto nb = static_cast<std::int64_t>(bl.size());
-  bl.refresh_world();
+  model::refresh_world(model_);
   if (steps_ % 10 == 0) {
     // Redetect once a block has moved half the tolerance since the last detection.
     double moved = 0.0;
@@ -176,18 +187,29 @@ void Solver::step() {
                         &cracks_per_chunk_,
                         dt_,
                         time_,
-                        {}};
-  for (std::size_t l = 0; l < laws_.size(); ++l) {
-    laws_[l]->step(ctx, law_begin_[l], law_begin_[l + 1]);
+                        {},
+                        &model_.zoning};
+  auto& z = model_.zoning;
+  std::fill(z.cfx.begin(), z.cfx.end(), 0.0);
+  std::fill(z.cfy.begin(), z.cfy.end(), 0.0);
+  const auto take_cracks = [&] {
     for (auto& list : cracks_per_chunk_) {  // chunk order = contact order: deterministic
       cracks_.insert(cracks_.end(), list.begin(), list.end());
       list.clear();
     }
+  };
+  for (std::size_t l = 0; l < laws_.size(); ++l) {
+    laws_[l]->step(ctx, law_begin_[l], deformable_begin_[l]);
+    take_cracks();
+    if (deformable_begin_[l] == law_begin_[l + 1]) continue;
+    laws_[l]->step_deformable(ctx, deformable_begin_[l], law_begin_[l + 1]);
+    take_cracks();
   }
   energy_.slip += ctx.totals.dissipated_slip;
   energy_.breakage += ctx.totals.dissipated_breakage;
   gather_shared_forces();
   integrate();
+  if (!z.empty()) integrate_gridpoints();
   time_ += dt_;
   ++steps_;
 }
@@ -225,10 +247,12 @@ void Solver::integrate() {
   const double *mass = bl.mass.data(), *inertia = bl.inertia.data();
   const double* gravity_mass = bl.gravity_mass.data();
   const std::uint8_t* prescribed = bl.prescribed.data();
+  const std::uint8_t* deformable = bl.deformable.data();
   const double *cfx = cfx_.data(), *cfy = cfy_.data(), *cm = cm_.data();
 #pragma omp parallel for schedule(static) reduction(+ : w_boundary, w_body, w_damp)
   for (std::int64_t bi = 0; bi < nb; ++bi) {
     const auto b = static_cast<std::size_t>(bi);
+    if (deformable[b]) continue;  // moves with its gridpoints (integrate_gridpoints)
     double u = vx[b], v = vy[b], w = omega[b];
     if (prescribed[b]) {
       // Work of the platen on the specimen: minus the contact force the specimen exerts on it.
@@ -263,9 +287,12 @@ double Solver::kinetic_energy() const {
   const auto& bl = model_.blocks;
   double e = 0.0;
   for (std::size_t b = 0; b < bl.size(); ++b)
-    if (!bl.prescribed[b])
+    if (!bl.prescribed[b] && !bl.deformable[b])
       e += 0.5 * (bl.mass[b] * (bl.vx[b] * bl.vx[b] + bl.vy[b] * bl.vy[b]) +
                   bl.inertia[b] * bl.omega[b] * bl.omega[b]);
+  const auto& z = model_.zoning;
+  for (std::size_t g = 0; g < z.gridpoints(); ++g)
+    if (!z.prescribed[g]) e += 0.5 * z.mass[g] * (z.vx[g] * z.vx[g] + z.vy[g] * z.vy[g]);
   return e;
 }
 
@@ -294,6 +321,14 @@ void Solver::check_stability() const {
       throw InstabilityError(
           fmt::format("block {} has a non-finite position or velocity at step {} (t = {:.6g} s)", b,
                       steps_, time_));
+  }
+  const auto& z = model_.zoning;
+  for (std::size_t g = 0; g < z.gridpoints(); ++g) {
+    if (!std::isfinite(z.x[g] + z.y[g] + z.vx[g] + z.vy[g]))
+      throw InstabilityError(
+          fmt::format("gridpoint {} of block {} has a non-finite position or velocity at step {} "
+                      "(t = {:.6g} s)",
+                      g, z.block[g], steps_, time_));
   }
   const double limit = 0.5 * model_.rounding_length;
   for (const auto& c : model_.contacts) {

@@ -405,7 +405,8 @@ std::vector<NamedCase> analytic_cases() {
           {"A6", a6_direct_tension},
           {"A7", a7_weibull_ks},
           {"A7", a7_weibull_mean},
-          {"A8", a8_local_damping}};
+          {"A8", a8_local_damping},
+          {"A13", a13_patch_test}};
 }
 
 }  // namespace vorodec::verification

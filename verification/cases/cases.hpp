@@ -35,6 +35,12 @@ CaseResult a7_weibull_ks();
 CaseResult a7_weibull_mean();
 CaseResult a8_local_damping();
 
+// Deformable blocks (fast: part of the unit tests too).
+CaseResult a13_patch_test();
+// A deformable column on a rigid platen under its own weight, and between platens under uniaxial
+// stress: stress and displacement against the plane-strain elastic solution.
+std::vector<CaseResult> deformable_column(double zone_size);
+
 // Published results: whole model runs (minutes), run by verification/run.sh only.
 std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::string& binary);
 
@@ -95,6 +101,9 @@ std::vector<Ladder> analytic_ladders();  // A3 period and A8 damping against the
 // The default model (models/ucs_marble.toml), one thread: UCS and E against the platen speed and
 // against the density-scaling time step, each relative to its finest run. Minutes.
 std::vector<Ladder> model_ladders(const std::string& source_dir, const std::string& binary);
+// tests/models/deformable_small.toml, elastic (strengths out of reach), one thread: the apparent
+// Young's modulus against the zone size, relative to the finest zoning. About a minute.
+Ladder deformable_ladder(const std::string& source_dir, const std::string& binary);
 
 struct NamedCase {
   std::string id;

@@ -42,6 +42,9 @@ struct RunSummary {
   long steps = 0;
   double wall_seconds = 0;
   std::size_t blocks = 0, contacts = 0, cracks_tensile = 0, cracks_shear = 0;
+  std::size_t zones = 0;  // of deformable blocks
+  // Pa, zone-area-weighted mean stress of the specimen at the end (compression positive).
+  double zone_stress_xx = 0, zone_stress_yy = 0, zone_stress_xy = 0;
 };
 
 RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& specimen,

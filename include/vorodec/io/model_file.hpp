@@ -46,6 +46,15 @@ struct OutputSettings {
   double damage_grid_cell = 0.0;  // m, cell side of the damage grid; 0: about 5 mean block sizes
 };
 
+// [blocks] deformable = true: specimen blocks zoned into constant-strain triangles (platens stay
+// rigid).
+struct DeformableSettings {
+  bool enabled = false;
+  double zone_size = 0;       // m, longest zone edge
+  double youngs_modulus = 0;  // Pa
+  double poisson_ratio = 0;   // plane strain
+};
+
 struct ModelConfig {
   std::filesystem::path file;
   std::string title;
@@ -54,6 +63,7 @@ struct ModelConfig {
   std::optional<std::filesystem::path> specimen_file;  // prepared specimen (vorodec build)
   int specimen_line = 0;                               // line of [specimen], for geometry errors
   double density = 0;                                  // kg/m^3
+  DeformableSettings deformable;                       // [blocks] deformable, zone_size, E, nu
   double rounding_length = 0;                          // m
   LawChoice joints;                                    // specimen block to block
   LawChoice platens;                                   // platen to specimen

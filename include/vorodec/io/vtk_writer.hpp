@@ -1,6 +1,7 @@
 #pragma once
 // ParaView output: one .vtp per output time for blocks, contacts and cracks (and one .vti for a
 // damage grid), tied together by .pvd collections. VTK stays inside src/io/vtk_writer.cpp.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -47,11 +48,17 @@ struct VtkFrame {
   std::vector<double> crack_time;        // s
   // Damage grid; nx = 0: none. Either every frame of a series has one or none has.
   VtkGrid grid;
+  // Zones of the deformable blocks as triangles, corners zone_points[3 z .. 3 z + 2]; empty: none
+  // (then no zones series is written). Stress tension positive (Pa), strain tensorial.
+  std::vector<geometry::Point> zone_points;
+  std::vector<std::int32_t> zone_block;
+  std::vector<std::array<double, 4>> zone_stress;  // xx, yy, xy, zz
+  std::vector<std::array<double, 3>> zone_strain;  // xx, yy, xy (= gamma_xy / 2)
 };
 
 // Writes <dir>/blocks_<n>.vtp, contacts_<n>.vtp, cracks_<n>.vtp (and damage_<n>.vti when the frame
-// has a grid) per frame and rewrites blocks.pvd, contacts.pvd, cracks.pvd (damage.pvd) after every
-// frame, so an interrupted run stays readable.
+// has a grid, zones_<n>.vtp when it has zones) per frame and rewrites blocks.pvd, contacts.pvd,
+// cracks.pvd (damage.pvd) after every frame, so an interrupted run stays readable.
 class VtkSeriesWriter {
  public:
   explicit VtkSeriesWriter(std::filesystem::path dir);
@@ -62,7 +69,8 @@ class VtkSeriesWriter {
   void write_collections() const;
   std::filesystem::path dir_;
   std::vector<double> times_;
-  bool grid_ = false;  // the series has a damage grid
+  bool grid_ = false;   // the series has a damage grid
+  bool zones_ = false;  // the series has deformable-block zones
 };
 
 }  // namespace vorodec::io

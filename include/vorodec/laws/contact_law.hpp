@@ -78,6 +78,7 @@ struct StepContext {
   double dt;    // s
   double time;  // s
   ContactTotals totals;
+  model::Zoning* zoning;  // gridpoints of the deformable blocks (contact sums zero before the step)
 };
 
 // A new contact: bonded ones belong to the initial tessellation, others are frictional only.
@@ -97,6 +98,8 @@ class LawGroup {
   virtual std::string_view name() const = 0;
   // Advance contacts [begin, end) of the context's contact array; they all belong to this group.
   virtual void step(StepContext& ctx, std::size_t begin, std::size_t end) = 0;
+  // The same for contacts [begin, end) that touch a deformable block.
+  virtual void step_deformable(StepContext& ctx, std::size_t begin, std::size_t end) = 0;
   // The group's contacts were rebuilt: new local index i came from old local index old_of_new[i],
   // or is new (-1) and described by fresh[i].
   virtual void rebuild(std::span<const std::int64_t> old_of_new,

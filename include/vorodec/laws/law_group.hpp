@@ -8,6 +8,7 @@
 
 #include "vorodec/laws/contact_law.hpp"
 #include "vorodec/model/contact_geometry.hpp"
+#include "vorodec/model/deformable_contact.hpp"
 
 namespace vorodec::laws {
 
@@ -58,9 +59,6 @@ class LawGroupOf final : public LawGroup {
     model::ContactForce* forces = ctx.forces;
     const std::uint8_t* shared_sides = ctx.shared_sides;
     double *sum_fx = ctx.fx, *sum_fy = ctx.fy, *sum_m = ctx.moment;
-    auto* props = props_.data();
-    auto* state = state_.data();
-    const double dt = ctx.dt;
     const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
     // One part per thread; a thread the runtime did not grant (or a group too small to be worth
@@ -72,7 +70,6 @@ class LawGroupOf final : public LawGroup {
       for (std::size_t i = lo; i < hi; ++i) {
         model::Contact& c = contacts[i];
         const model::ContactFrame f = model::contact_frame(bl, c);
-        const model::Point s{-f.n.y, f.n.x};
         const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
         const model::BlockKinematics& ka = bl.kin[a];
         const model::BlockKinematics& kb = bl.kin[b];
@@ -81,34 +78,8 @@ class LawGroupOf final : public LawGroup {
             (ka.vx - ka.omega * (f.point.y - ka.y)) - (kb.vx - kb.omega * (f.point.y - kb.y));
         const double vry =
             (ka.vy + ka.omega * (f.point.x - ka.x)) - (kb.vy + kb.omega * (f.point.x - kb.x));
-        const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
-        const double fn0 = c.fn, fs0 = c.fs;
-        const LawResult r = Law::evaluate(k, props[i - begin], state[i - begin]);
-        // Energy a contact dissipates in one step: work done on it minus its strain-energy change
-        // (zero by construction in an elastic step).
-        double dissipated = 0.0;
-        if (!r.elastic) {
-          const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
-          dissipated = work - (Law::strain_energy(props[i - begin], r.fn, r.fs) -
-                               Law::strain_energy(props[i - begin], fn0, fs0));
-        }
-        c.gap = f.gap;
-        c.u_s += k.du_s;
-        c.fn = r.fn;
-        c.fs = r.fs;
-        if (r.event == ContactEvent::tensile_failure || r.event == ContactEvent::shear_failure) {
-          breakage += dissipated;
-          c.state = r.event == ContactEvent::tensile_failure ? model::ContactState::tensile_failed
-                                                             : model::ContactState::shear_failed;
-          cracks.push_back(
-              {ctx.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
-        } else {
-          slip += dissipated;
-          if (c.state <= model::ContactState::slipping)
-            c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
-                                                    : model::ContactState::intact;
-        }
-        const double fx = r.fn * f.n.x + r.fs * s.x, fy = r.fn * f.n.y + r.fs * s.y;
+        const model::Point force = update(ctx, c, f, vrx, vry, i - begin, cracks, slip, breakage);
+        const double fx = force.x, fy = force.y;
         const double ma = (f.point.x - ka.x) * fy - (f.point.y - ka.y) * fx;
         const double mb = (f.point.x - kb.x) * fy - (f.point.y - kb.y) * fx;
         const std::uint8_t shared = shared_sides[i];
@@ -129,7 +100,97 @@ class LawGroupOf final : public LawGroup {
     ctx.totals.dissipated_breakage += breakage;
   }
 
+  // Contacts with a deformable side (PHYSICS 7): the corner side moves with its gridpoint, the
+  // edge side with its two gridpoints interpolated at the contact point, and their force goes to
+  // the same gridpoints with the same weights. Serial: few contacts sit on block boundaries.
+  void step_deformable(StepContext& ctx, std::size_t begin, std::size_t end) override {
+    model::Blocks& bl = *ctx.blocks;
+    model::Zoning& z = *ctx.zoning;
+    double slip = 0.0, breakage = 0.0;
+    auto& cracks = (*ctx.cracks_per_chunk)[0];
+    for (std::size_t i = begin; i < end; ++i) {
+      model::Contact& c = ctx.contacts[i];
+      const model::ContactFrame f = model::contact_frame(bl, c);
+      const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+      const model::BodyPoint pa = model::corner_point(bl, z, a, c.corner);
+      const model::BodyPoint pb = model::edge_point(bl, z, b, c.edge, f.point);
+      const model::Point va = model::velocity_at(bl, z, a, pa, f.point);
+      const model::Point vb = model::velocity_at(bl, z, b, pb, f.point);
+      const model::Point force =
+          update(ctx, c, f, va.x - vb.x, va.y - vb.y, i - begin, cracks, slip, breakage);
+      const std::uint8_t shared = ctx.shared_sides[i];
+      const auto apply = [&](std::size_t blk, const model::BodyPoint& p, double sign, bool on_b) {
+        if (p.g0 >= 0) {
+          const auto g0 = static_cast<std::size_t>(p.g0);
+          z.cfx[g0] += sign * (1.0 - p.w1) * force.x;
+          z.cfy[g0] += sign * (1.0 - p.w1) * force.y;
+          if (p.g1 >= 0) {
+            const auto g1 = static_cast<std::size_t>(p.g1);
+            z.cfx[g1] += sign * p.w1 * force.x;
+            z.cfy[g1] += sign * p.w1 * force.y;
+          }
+          return;
+        }
+        const model::BlockKinematics& k = bl.kin[blk];
+        const double m = (f.point.x - k.x) * force.y - (f.point.y - k.y) * force.x;
+        if (shared & (on_b ? b_shared : a_shared)) {
+          model::ContactForce& rec = ctx.forces[i];
+          rec.fx = force.x;
+          rec.fy = force.y;
+          (on_b ? rec.mb : rec.ma) = m;
+        } else {
+          ctx.fx[blk] += sign * force.x;
+          ctx.fy[blk] += sign * force.y;
+          ctx.moment[blk] += sign * m;
+        }
+      };
+      apply(a, pa, 1.0, false);
+      apply(b, pb, -1.0, true);
+    }
+    ctx.totals.dissipated_slip += slip;
+    ctx.totals.dissipated_breakage += breakage;
+  }
+
  private:
+  // Law::evaluate for contact i (local index li) with relative velocity (vrx, vry) of a with
+  // respect to b, its bookkeeping (state, crack, dissipation), and the force on a.
+  [[gnu::always_inline]] inline model::Point update(StepContext& ctx, model::Contact& c,
+                                                    const model::ContactFrame& f, double vrx,
+                                                    double vry, std::size_t li,
+                                                    std::vector<CrackEvent>& cracks, double& slip,
+                                                    double& breakage) {
+    const model::Point s{-f.n.y, f.n.x};
+    const double dt = ctx.dt;
+    auto& props = props_[li];
+    const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
+    const double fn0 = c.fn, fs0 = c.fs;
+    const LawResult r = Law::evaluate(k, props, state_[li]);
+    // Energy a contact dissipates in one step: work done on it minus its strain-energy change
+    // (zero by construction in an elastic step).
+    double dissipated = 0.0;
+    if (!r.elastic) {
+      const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
+      dissipated =
+          work - (Law::strain_energy(props, r.fn, r.fs) - Law::strain_energy(props, fn0, fs0));
+    }
+    c.gap = f.gap;
+    c.u_s += k.du_s;
+    c.fn = r.fn;
+    c.fs = r.fs;
+    if (r.event == ContactEvent::tensile_failure || r.event == ContactEvent::shear_failure) {
+      breakage += dissipated;
+      c.state = r.event == ContactEvent::tensile_failure ? model::ContactState::tensile_failed
+                                                         : model::ContactState::shear_failed;
+      cracks.push_back({ctx.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
+    } else {
+      slip += dissipated;
+      if (c.state <= model::ContactState::slipping)
+        c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
+                                                : model::ContactState::intact;
+    }
+    return {r.fn * f.n.x + r.fs * s.x, r.fn * f.n.y + r.fs * s.y};
+  }
+
   typename Law::Params params_;
   std::uint64_t seed_;
   std::vector<typename Law::Props> props_;

@@ -1,5 +1,6 @@
 #pragma once
 // Turns a tessellation into rigid blocks (mass properties, rounded corners) plus loading platens.
+#include <optional>
 #include <span>
 
 #include "vorodec/geometry/tessellation.hpp"
@@ -13,7 +14,14 @@ struct BuildSettings {
   bool platens = true;           // rigid platens above and below the specimen
 };
 
-Model build_model(const geometry::Tessellation& tess, const BuildSettings& settings);
+// Specimen blocks zoned into constant-strain triangles of this size and material.
+struct DeformableBuild {
+  double zone_size = 0.0;  // m, longest zone edge
+  ElasticMaterial material;
+};
+
+Model build_model(const geometry::Tessellation& tess, const BuildSettings& settings,
+                  const std::optional<DeformableBuild>& deformable = std::nullopt);
 
 // Appends one rigid block with the given world-frame polygon (counter-clockwise).
 void add_block(Model& model, std::span<const Point> polygon, double density, Group group);

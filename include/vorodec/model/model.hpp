@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "vorodec/geometry/point.hpp"
+#include "vorodec/model/zoning.hpp"
 
 namespace vorodec::model {
 
@@ -41,6 +42,8 @@ struct Blocks {
   std::vector<double> fx, fy, moment;  // applied boundary loads of the current step (N, N m)
   std::vector<Group> group;
   std::vector<std::uint8_t> prescribed;  // 1: velocity set by the load path, not integrated
+  // 1: zoned (Model::zoning); its corners follow boundary gridpoints, its centroid their mean.
+  std::vector<std::uint8_t> deformable;
   // Shape, in the block's own frame (relative to the centroid at theta = 0), corners
   // counter-clockwise.
   std::vector<std::uint32_t> corner_begin;  // size blocks + 1
@@ -102,6 +105,13 @@ struct Model {
   std::vector<Contact> contacts;
   double rounding_length = 0.0;  // m, UDEC corner rounding d
   double thickness = 1.0;        // m, out of plane
+  Zoning zoning;                 // gridpoints and zones of the deformable blocks
 };
+
+// Blocks::refresh_world() and then the deformable blocks from their gridpoints.
+inline void refresh_world(Model& m) {
+  m.blocks.refresh_world();
+  if (!m.zoning.empty()) refresh_deformable(m);
+}
 
 }  // namespace vorodec::model

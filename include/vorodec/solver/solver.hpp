@@ -1,6 +1,7 @@
 #pragma once
-// Explicit central-difference integration of rigid blocks with Cundall local damping (PHYSICS 1.3,
-// 5.1, 6.1). Each step: contact geometry -> laws -> block forces -> damping -> integration.
+// Explicit central-difference integration of rigid blocks and of the gridpoints of deformable
+// blocks (src/solver/gridpoints.cpp) with Cundall local damping (PHYSICS 1.3, 5.1, 6, 7). Each
+// step: contact geometry -> laws -> block and gridpoint forces -> damping -> integration.
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -55,6 +56,7 @@ class Solver {
   const std::vector<laws::CrackEvent>& cracks() const { return cracks_; }
   double kinetic_energy() const;
   double contact_strain_energy() const;
+  double zone_strain_energy() const;  // J per m, deformable blocks
   std::size_t initial_bonded_contacts() const { return initial_bonded_; }
   std::size_t detections() const { return detections_; }
   const std::vector<std::unique_ptr<laws::LawGroup>>& laws() const { return laws_; }
@@ -71,10 +73,14 @@ class Solver {
   void partition();
   void gather_shared_forces();
   void integrate();
+  void integrate_gridpoints();
+  double gridpoint_time_step();  // s, min 2 sqrt(m/k) over gridpoints; applies density scaling
 
   model::Model& model_;
   std::vector<std::unique_ptr<laws::LawGroup>> laws_;
   std::vector<std::size_t> law_begin_;
+  std::vector<std::size_t> deformable_begin_;  // per law: its contacts touching deformable blocks
+  std::vector<double> zfx_, zfy_;              // zone forces per gridpoint, N per m
   ContactDetector detector_;
   SolverSettings settings_;
   std::vector<model::ContactForce> forces_;

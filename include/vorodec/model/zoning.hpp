@@ -1,0 +1,91 @@
+#pragma once
+// Deformable blocks (PHYSICS 7): each is zoned into constant-strain triangles whose corners are
+// gridpoints with lumped mass. Stress is total small-strain linear elasticity (plane strain):
+// sigma = D eps(u), u = x - x0, with the shape derivatives of the initial zone, so a uniform
+// strain gives exactly uniform stress (patch test) and there is no drift; large rotations of a
+// deformable block are not objective (not supported).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "vorodec/geometry/point.hpp"
+
+namespace vorodec::model {
+
+using geometry::Point;
+
+// Isotropic linear elasticity, plane strain.
+struct ElasticMaterial {
+  double youngs_modulus = 0;  // Pa
+  double poisson_ratio = 0;
+  double lambda() const {
+    return youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
+  }
+  double shear_modulus() const { return youngs_modulus / (2 * (1 + poisson_ratio)); }
+};
+
+// One constant-strain triangle: gridpoints counter-clockwise, initial area and shape derivatives
+// dN_k/dx = bx[k], dN_k/dy = by[k], and its elastic constants.
+struct Zone {
+  std::array<std::uint32_t, 3> gp;
+  double area;                   // m^2, initial
+  std::array<double, 3> bx, by;  // 1/m
+  double lambda, shear;          // Pa
+};
+
+// Tension positive (PHYSICS 0); zz is the out-of-plane stress of plane strain.
+struct ZoneStress {
+  double xx = 0, yy = 0, xy = 0, zz = 0;
+};
+
+struct Zoning {
+  // Gridpoints (struct of arrays).
+  std::vector<double> x, y, x0, y0, vx, vy;
+  std::vector<double> mass;              // kg per m, inertial (density scaling may raise it)
+  std::vector<double> gravity_mass;      // kg per m, true lumped mass
+  std::vector<double> fx, fy;            // N per m, applied boundary loads of the current step
+  std::vector<double> cfx, cfy;          // N per m, contact force sums of the current step
+  std::vector<std::uint32_t> block;      // owning block
+  std::vector<std::uint8_t> prescribed;  // 1: velocity set from outside, not integrated
+  // Zones and their state.
+  std::vector<Zone> zones;
+  std::vector<ZoneStress> stress;
+  std::vector<std::array<double, 3>> strain;  // exx, eyy, gamma_xy (engineering)
+  std::vector<std::uint32_t> zone_block;
+  // Gridpoint -> (zone << 2 | corner) in zone order, for a deterministic gather of zone forces.
+  std::vector<std::uint32_t> gp_zone_begin, gp_zone;
+  std::vector<std::array<double, 6>> zone_force;  // per zone: (fx, fy) on each corner, scratch
+  // Per block corner (Blocks::corner index): its gridpoint, or -1 on a rigid block.
+  std::vector<std::int32_t> corner_gp;
+  // Deformable blocks and the range of their gridpoints.
+  std::vector<std::uint32_t> blocks, gp_begin, gp_end;
+
+  std::size_t gridpoints() const { return x.size(); }
+  bool empty() const { return zones.empty(); }
+};
+
+struct Model;
+enum class Group : std::int32_t;
+
+// Appends a deformable block zoned from a counter-clockwise polygon: its boundary gridpoints
+// become the block's corners, so contact detection and geometry treat it like any block.
+void add_deformable_block(Model& model, const std::vector<Point>& polygon, double density,
+                          const ElasticMaterial& material, double zone_size, Group group);
+
+// World corners, rounded-corner arcs and centroids of the deformable blocks from their gridpoints.
+void refresh_deformable(Model& model);
+
+// Zone strains and stresses from the gridpoint displacements; zone forces gathered per gridpoint
+// into (out_fx, out_fy) (N per m).
+void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy);
+
+// N/m per gridpoint, the Gershgorin row bound of the zone stiffness (PHYSICS 6.2).
+std::vector<double> zone_stiffness_bound(const Zoning& z);
+
+// J per m, elastic strain energy held in the zones.
+double zone_strain_energy(const Zoning& z);
+
+// Area-weighted mean zone stress over the deformable blocks of one group (tension positive).
+ZoneStress mean_stress(const Model& model, Group group);
+
+}  // namespace vorodec::model

@@ -1,0 +1,239 @@
+#include "vorodec/model/zoning.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vorodec/geometry/zone_mesh.hpp"
+#include "vorodec/model/build.hpp"
+#include "vorodec/model/model.hpp"
+
+namespace vorodec::model {
+
+namespace {
+
+// Rounded-corner arc (PHYSICS 2.2: tangent to both edges, radius d tan(beta/2) capped at 4d as in
+// model/build.cpp) from the unit directions u (to the previous corner) and w (to the next), without
+// trigonometry (this runs for every boundary gridpoint every step). With cos(beta) = u.w:
+// tan(beta/2) = |u x w| / (1 + u.w), and the centre lies at R / sin(beta/2) along the inward
+// bisector, i.e. at R perp(w - u) / (1 - u.w). perp(w - u) stays defined at straight (180 degree)
+// corners, which boundary gridpoints along an edge form.
+void round_gridpoint(Point u, Point c, Point w, double d, Point& centre, double& radius) {
+  const double cosine = dot(u, w), sine = std::abs(cross(u, w));
+  radius = sine >= 4.0 * (1.0 + cosine) ? 4.0 * d : d * sine / (1.0 + cosine);
+  const Point f = w - u;
+  centre = c + (radius / (1.0 - cosine)) * Point{-f.y, f.x};
+}
+
+}  // namespace
+
+void add_deformable_block(Model& model, const std::vector<Point>& polygon, double density,
+                          const ElasticMaterial& material, double zone_size, Group group) {
+  const geometry::ZoneMesh mesh = geometry::mesh_polygon(polygon, zone_size);
+  std::vector<Point> outline;
+  for (std::uint32_t g : mesh.boundary) outline.push_back(mesh.points[g]);
+  add_block(model, outline, density, group);
+  Blocks& bl = model.blocks;
+  Zoning& z = model.zoning;
+  const auto b = static_cast<std::uint32_t>(bl.size() - 1);
+  bl.deformable.back() = 1;
+
+  const auto base = static_cast<std::uint32_t>(z.gridpoints());
+  for (const Point& p : mesh.points) {
+    for (auto* v : {&z.vx, &z.vy, &z.mass, &z.gravity_mass, &z.fx, &z.fy, &z.cfx, &z.cfy})
+      v->push_back(0.0);
+    z.x.push_back(p.x);
+    z.y.push_back(p.y);
+    z.x0.push_back(p.x);
+    z.y0.push_back(p.y);
+    z.block.push_back(b);
+    z.prescribed.push_back(0);
+  }
+  const double lambda = material.lambda(), shear = material.shear_modulus();
+  const auto zone0 = static_cast<std::uint32_t>(z.zones.size());
+  for (const auto& t : mesh.zones) {
+    Zone zone{};
+    const Point p[3] = {mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]};
+    zone.area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
+    for (int k = 0; k < 3; ++k) {
+      const Point pb = p[(k + 1) % 3], pc = p[(k + 2) % 3];
+      zone.gp[static_cast<std::size_t>(k)] = base + t[static_cast<std::size_t>(k)];
+      zone.bx[static_cast<std::size_t>(k)] = (pb.y - pc.y) / (2.0 * zone.area);
+      zone.by[static_cast<std::size_t>(k)] = (pc.x - pb.x) / (2.0 * zone.area);
+    }
+    zone.lambda = lambda;
+    zone.shear = shear;
+    // Lumped mass: a third of the zone's mass to each corner.
+    for (std::uint32_t g : zone.gp) {
+      z.mass[g] += density * zone.area * model.thickness / 3.0;
+      z.gravity_mass[g] = z.mass[g];
+    }
+    z.zones.push_back(zone);
+    z.stress.push_back({});
+    z.strain.push_back({0.0, 0.0, 0.0});
+    z.zone_block.push_back(b);
+    z.zone_force.push_back({});
+  }
+  // Gridpoint -> zone corners of the new gridpoints (they only belong to the new zones).
+  if (z.gp_zone_begin.empty()) z.gp_zone_begin.push_back(0);
+  std::vector<std::uint32_t> count(mesh.points.size(), 0);
+  for (std::uint32_t i = zone0; i < z.zones.size(); ++i)
+    for (std::uint32_t g : z.zones[i].gp) ++count[g - base];
+  std::vector<std::uint32_t> fill;
+  for (std::uint32_t c : count) {
+    fill.push_back(z.gp_zone_begin.back());
+    z.gp_zone_begin.push_back(z.gp_zone_begin.back() + c);
+  }
+  z.gp_zone.resize(z.gp_zone_begin.back());
+  for (std::uint32_t i = zone0; i < z.zones.size(); ++i)
+    for (std::uint32_t k = 0; k < 3; ++k) z.gp_zone[fill[z.zones[i].gp[k] - base]++] = i << 2 | k;
+
+  z.corner_gp.resize(bl.corner.size(), -1);
+  for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c)
+    z.corner_gp[c] = static_cast<std::int32_t>(base + mesh.boundary[c - bl.corner_begin[b]]);
+  z.blocks.push_back(b);
+  z.gp_begin.push_back(base);
+  z.gp_end.push_back(static_cast<std::uint32_t>(z.gridpoints()));
+  refresh_deformable(model);
+}
+
+void refresh_deformable(Model& model) {
+  Blocks& bl = model.blocks;
+  Zoning& z = model.zoning;
+  const double d = model.rounding_length;
+  const auto nd = static_cast<std::int64_t>(z.blocks.size());
+  // Small models stay on one thread: a parallel region costs more than their work.
+#pragma omp parallel for schedule(static) if (nd >= 64)
+  for (std::int64_t k = 0; k < nd; ++k) {
+    const std::uint32_t b = z.blocks[static_cast<std::size_t>(k)];
+    double m = 0, mx = 0, my = 0, mu = 0, mv = 0;
+    for (std::uint32_t g = z.gp_begin[static_cast<std::size_t>(k)];
+         g < z.gp_end[static_cast<std::size_t>(k)]; ++g) {
+      m += z.gravity_mass[g];
+      mx += z.gravity_mass[g] * z.x[g];
+      my += z.gravity_mass[g] * z.y[g];
+      mu += z.gravity_mass[g] * z.vx[g];
+      mv += z.gravity_mass[g] * z.vy[g];
+    }
+    bl.x[b] = mx / m;
+    bl.y[b] = my / m;
+    bl.vx[b] = mu / m;
+    bl.vy[b] = mv / m;
+    bl.kin[b] = {bl.x[b], bl.y[b], bl.vx[b], bl.vy[b], 0.0};
+    const std::uint32_t c0 = bl.corner_begin[b], c1 = bl.corner_begin[b + 1];
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      const auto g = static_cast<std::size_t>(z.corner_gp[c]);
+      bl.world[c].corner = {z.x[g], z.y[g]};
+    }
+    // Unit edge directions, kept in the shape's inverse lengths and reused by the corners.
+    thread_local std::vector<Point> tangent;
+    tangent.resize(c1 - c0);
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      const Point e = bl.world[bl.shape[c].next].corner - bl.world[c].corner;
+      const double inv = 1.0 / std::sqrt(dot(e, e));
+      bl.shape[c].inv_length = inv;
+      tangent[c - c0] = inv * e;
+    }
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      const Point t_in = tangent[(c == c0 ? c1 : c) - 1 - c0], t_out = tangent[c - c0];
+      round_gridpoint(-1.0 * t_in, bl.world[c].corner, t_out, d, bl.world[c].centre,
+                      bl.shape[c].radius);
+    }
+    for (std::uint32_t c = c0; c < c1; ++c) {
+      const Point t = tangent[c - c0], p = bl.world[c].corner;
+      bl.shape[c].s0 = dot(bl.world[c].centre - p, t);
+      bl.shape[c].s1 = dot(bl.world[bl.shape[c].next].centre - p, t);
+    }
+  }
+}
+
+void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
+  const auto nz = static_cast<std::int64_t>(z.zones.size());
+  const double *x = z.x.data(), *y = z.y.data(), *x0 = z.x0.data(), *y0 = z.y0.data();
+#pragma omp parallel for schedule(static) if (nz >= 2048)
+  for (std::int64_t i = 0; i < nz; ++i) {
+    const auto zi = static_cast<std::size_t>(i);
+    const Zone& q = z.zones[zi];
+    double exx = 0, eyy = 0, gxy = 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t g = q.gp[k];
+      const double ux = x[g] - x0[g], uy = y[g] - y0[g];
+      exx += q.bx[k] * ux;
+      eyy += q.by[k] * uy;
+      gxy += q.by[k] * ux + q.bx[k] * uy;
+    }
+    const double vol = q.lambda * (exx + eyy);
+    const ZoneStress s{vol + 2.0 * q.shear * exx, vol + 2.0 * q.shear * eyy, q.shear * gxy, vol};
+    z.stress[zi] = s;
+    z.strain[zi] = {exx, eyy, gxy};
+    auto& f = z.zone_force[zi];
+    for (std::size_t k = 0; k < 3; ++k) {  // F^k = -A sigma . grad N_k
+      f[2 * k] = -q.area * (s.xx * q.bx[k] + s.xy * q.by[k]);
+      f[2 * k + 1] = -q.area * (s.xy * q.bx[k] + s.yy * q.by[k]);
+    }
+  }
+  const auto ng = static_cast<std::int64_t>(z.gridpoints());
+  out_fx.resize(z.gridpoints());
+  out_fy.resize(z.gridpoints());
+#pragma omp parallel for schedule(static) if (ng >= 2048)
+  for (std::int64_t gi = 0; gi < ng; ++gi) {
+    const auto g = static_cast<std::size_t>(gi);
+    double fx = 0, fy = 0;
+    for (std::uint32_t j = z.gp_zone_begin[g]; j < z.gp_zone_begin[g + 1]; ++j) {
+      const std::uint32_t e = z.gp_zone[j];
+      const auto& f = z.zone_force[e >> 2];
+      fx += f[2 * (e & 3u)];
+      fy += f[2 * (e & 3u) + 1];
+    }
+    out_fx[g] = fx;
+    out_fy[g] = fy;
+  }
+}
+
+std::vector<double> zone_stiffness_bound(const Zoning& z) {
+  std::vector<double> kx(z.gridpoints(), 0.0), ky(z.gridpoints(), 0.0);
+  for (const Zone& q : z.zones) {
+    const double p = q.lambda + 2.0 * q.shear, l = q.lambda, g = q.shear;
+    for (std::size_t a = 0; a < 3; ++a) {
+      double rx = 0, ry = 0;
+      for (std::size_t b = 0; b < 3; ++b) {
+        rx += std::abs(p * q.bx[a] * q.bx[b] + g * q.by[a] * q.by[b]) +
+              std::abs(l * q.bx[a] * q.by[b] + g * q.by[a] * q.bx[b]);
+        ry += std::abs(l * q.by[a] * q.bx[b] + g * q.bx[a] * q.by[b]) +
+              std::abs(p * q.by[a] * q.by[b] + g * q.bx[a] * q.bx[b]);
+      }
+      kx[q.gp[a]] += q.area * rx;
+      ky[q.gp[a]] += q.area * ry;
+    }
+  }
+  for (std::size_t i = 0; i < kx.size(); ++i) kx[i] = std::max(kx[i], ky[i]);
+  return kx;
+}
+
+double zone_strain_energy(const Zoning& z) {
+  double e = 0.0;
+  for (std::size_t i = 0; i < z.zones.size(); ++i) {
+    const ZoneStress& s = z.stress[i];
+    const auto& eps = z.strain[i];
+    e += 0.5 * z.zones[i].area * (s.xx * eps[0] + s.yy * eps[1] + s.xy * eps[2]);
+  }
+  return e;
+}
+
+ZoneStress mean_stress(const Model& model, Group group) {
+  const Zoning& z = model.zoning;
+  ZoneStress m;
+  double area = 0.0;
+  for (std::size_t i = 0; i < z.zones.size(); ++i) {
+    if (model.blocks.group[z.zone_block[i]] != group) continue;
+    const double a = z.zones[i].area;
+    m.xx += a * z.stress[i].xx;
+    m.yy += a * z.stress[i].yy;
+    m.xy += a * z.stress[i].xy;
+    m.zz += a * z.stress[i].zz;
+    area += a;
+  }
+  if (area > 0) m = {m.xx / area, m.yy / area, m.xy / area, m.zz / area};
+  return m;
+}
+
+}  // namespace vorodec::model

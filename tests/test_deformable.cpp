@@ -1,0 +1,187 @@
+// Deformable blocks: zoning, zone forces, lumped masses, contact with a rigid platen, and the
+// verification cases A13 (patch test, column).
+#include <gtest/gtest.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "cases.hpp"
+#include "run_support.hpp"
+#include "scenes.hpp"
+#include "vorodec/model/polygon.hpp"
+#include "vorodec/model/zoning.hpp"
+
+using namespace vorodec;
+using namespace vorodec::verification;
+namespace fs = std::filesystem;
+
+namespace {
+::testing::AssertionResult passes(const CaseResult& r) {
+  if (r.pass()) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << r.id << " " << r.name << ": expected " << r.expected << ", measured " << r.measured
+         << ", error " << r.error << " > tolerance " << r.tolerance << " (" << r.reference << ")";
+}
+
+const model::ElasticMaterial rock{30e9, 0.25};
+}  // namespace
+
+TEST(Deformable, A13PatchTestGivesExactUniformStress) {
+  EXPECT_TRUE(passes(a13_patch_test()));
+}
+
+TEST(Deformable, ColumnMatchesElasticSolution) {
+  for (const auto& r : deformable_column(0.02)) EXPECT_TRUE(passes(r)) << r.settings;
+}
+
+TEST(Deformable, ZoneForcesAreMinusHalfTheEdgeTractions) {
+  // One well-shaped triangle: a single zone. PHYSICS 7: F^a = -A sigma . grad N_a
+  // = -(1/2) sum over the two edges meeting at a of (sigma . n_e) L_e.
+  model::Model m;
+  m.rounding_length = 1e-4;
+  model::add_deformable_block(m, {{0, 0}, {0.01, 0.001}, {0.004, 0.009}}, 2600, rock, 1.0,
+                              model::Group::specimen);
+  auto& z = m.zoning;
+  ASSERT_EQ(z.zones.size(), 1u);
+  const double u[3][2] = {{1e-6, -2e-6}, {-3e-6, 0.5e-6}, {2e-6, 4e-6}};
+  for (std::size_t g = 0; g < 3; ++g) {
+    z.x[g] += u[g][0];
+    z.y[g] += u[g][1];
+  }
+  std::vector<double> fx, fy;
+  model::zone_forces(z, fx, fy);
+  const model::ZoneStress s = z.stress[0];
+  const auto& gp = z.zones[0].gp;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t a = gp[k], b = gp[(k + 1) % 3], c = gp[(k + 2) % 3];
+    // Outward normal times length of a counter-clockwise edge p -> q: (dy, -dx).
+    const auto traction = [&](std::size_t p, std::size_t q) {
+      const double nx = z.y0[q] - z.y0[p], ny = -(z.x0[q] - z.x0[p]);
+      return std::pair{s.xx * nx + s.xy * ny, s.xy * nx + s.yy * ny};
+    };
+    const auto [t1x, t1y] = traction(a, b);
+    const auto [t2x, t2y] = traction(c, a);
+    const double scale = std::abs(s.xx) * 0.01;
+    EXPECT_NEAR(fx[a], -0.5 * (t1x + t2x), 1e-12 * scale);
+    EXPECT_NEAR(fy[a], -0.5 * (t1y + t2y), 1e-12 * scale);
+  }
+  EXPECT_NEAR(fx[0] + fx[1] + fx[2], 0.0, 1e-12 * std::abs(fx[0]));
+  // The stress is D eps of the linear displacement field (plane strain).
+  const double l = rock.lambda(), G = rock.shear_modulus();
+  const auto& e = z.strain[0];
+  EXPECT_NEAR(s.xx, (l + 2 * G) * e[0] + l * e[1], 1e-9 * std::abs(s.xx));
+  EXPECT_NEAR(s.zz, rock.poisson_ratio * (s.xx + s.yy), 1e-9 * std::abs(s.xx));
+}
+
+TEST(Deformable, LumpedMassesSumToBlockMass) {
+  model::Model m;
+  m.rounding_length = 1e-4;
+  const std::vector<model::Point> poly{
+      {0, 0}, {0.02, 0}, {0.026, 0.012}, {0.01, 0.022}, {-0.004, 0.01}};
+  model::add_deformable_block(m, poly, 2600, rock, 0.003, model::Group::specimen);
+  const auto& z = m.zoning;
+  ASSERT_GT(z.zones.size(), 20u);
+  const double total = std::accumulate(z.gravity_mass.begin(), z.gravity_mass.end(), 0.0);
+  const double block = 2600 * model::mass_properties(poly).area;
+  EXPECT_NEAR(total, block, 1e-12 * block);
+  EXPECT_NEAR(m.blocks.gravity_mass[0], block, 1e-12 * block);
+  // Every zone respects the size criterion and has positive area.
+  for (const auto& q : z.zones) {
+    EXPECT_GT(q.area, 0.0);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto p = q.gp[k], r = q.gp[(k + 1) % 3];
+      EXPECT_LE(std::hypot(z.x0[p] - z.x0[r], z.y0[p] - z.y0[r]), 0.003 * (1 + 1e-9));
+    }
+  }
+}
+
+TEST(Deformable, BlockRestingOnRigidPlatenCarriesItsWeight) {
+  model::Model m;
+  m.rounding_length = 1e-4;
+  model::add_deformable_block(m, square(0, 0, 0.02), 2600, rock, 0.01, model::Group::specimen);
+  model::add_block(m,
+                   std::vector<model::Point>{{-0.01, -0.01}, {0.03, -0.01}, {0.03, 0}, {-0.01, 0}},
+                   2600, model::Group::bottom_platen);
+  solver::SolverSettings s;
+  s.gravity = {0, -9.81};
+  auto solver = make_solver(m, "linear_elastic", params({{"jkn", 1e13}, {"jks", 1e13}}), s);
+  for (int i = 0; i < 3000; ++i) solver->step();
+  const double weight = 2600 * 0.02 * 0.02 * 9.81;
+  EXPECT_NEAR(-solver->contact_force(1).y, weight, 1e-6 * weight);
+  EXPECT_NEAR(solver->contact_force(1).x, 0.0, 1e-6 * weight);
+  // The zones carry it: mean sigma_yy = -weight / 2 / width (linear in depth, zero at the top).
+  const model::ZoneStress mean = model::mean_stress(m, model::Group::specimen);
+  EXPECT_NEAR(mean.yy, -0.5 * weight / 0.02, 0.01 * weight / 0.02);
+}
+
+TEST(Deformable, RunIsThreadInvariantAndWritesZones) {
+  namespace t = vorodec::testing;
+  const std::string model = std::string(VORODEC_SOURCE_DIR) + "/tests/models/deformable_small.toml";
+  const auto one = t::out_dir("deformable_1"), two = t::out_dir("deformable_2");
+  // The elastic part of the run (cracks start near 25 MPa): short enough for sanitizer builds.
+  const std::string args = "run " + model + " --max-steps 1500 --out ";
+  ASSERT_EQ(t::run_vorodec(args + one.string() + " --threads 1"), 0);
+  ASSERT_EQ(t::run_vorodec(args + two.string() + " --threads 2 --no-vtk"), 0);
+  EXPECT_EQ(t::slurp(one / "history.csv"), t::slurp(two / "history.csv"));
+  // Before the first crack, the zones' mean axial stress is the platens' axial stress
+  // (quasi-static loading).
+  const auto rows = t::read_csv(one / "history.csv");
+  int checked = 0;
+  for (const auto& r : rows) {
+    if (r[6] + r[7] > 0) break;  // cracks_tensile, cracks_shear
+    if (r[3] < 5e6) continue;    // axial_stress, Pa
+    EXPECT_NEAR(r[18], r[3], 0.02 * r[3]) << "zone_stress_yy at step " << r[0];
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+  const std::string summary = t::slurp(one / "summary.json");
+  EXPECT_GT(t::json_number(summary, "zones"), 500);
+  ASSERT_TRUE(fs::exists(one / "vtk/zones.pvd"));
+  auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+  reader->SetFileName((one / "vtk/zones_000001.vtp").string().c_str());
+  reader->Update();
+  vtkPolyData* pd = reader->GetOutput();
+  EXPECT_EQ(pd->GetNumberOfCells(), static_cast<vtkIdType>(t::json_number(summary, "zones")));
+  vtkDataArray* stress = pd->GetCellData()->GetArray("stress");
+  ASSERT_NE(stress, nullptr);
+  EXPECT_EQ(stress->GetNumberOfComponents(), 9);
+  for (const char* name : {"principal_stress_max", "principal_stress_min", "strain", "block"})
+    EXPECT_NE(pd->GetCellData()->GetArray(name), nullptr) << name;
+  fs::remove_all(t::base_dir());
+}
+
+TEST(Deformable, CornerArcsMatchRigidBlockRounding) {
+  // The trigonometry-free arcs of deformable blocks equal the rigid builder's at real corners;
+  // at gridpoints along an edge the arc is tangent to the edge at the gridpoint.
+  const std::vector<model::Point> poly{{0, 0}, {0.02, 0.002}, {0.024, 0.015}, {0.006, 0.02}};
+  model::Model m;
+  m.rounding_length = 5e-4;
+  model::add_block(m, poly, 2600, model::Group::specimen);
+  model::add_deformable_block(m, poly, 2600, rock, 0.004, model::Group::specimen);
+  m.blocks.refresh_world();
+  model::refresh_deformable(m);
+  const auto& bl = m.blocks;
+  std::size_t matched = 0;
+  for (std::uint32_t c = bl.corner_begin[1]; c < bl.corner_begin[2]; ++c) {
+    const model::Point p = bl.world[c].corner;
+    for (std::uint32_t k = bl.corner_begin[0]; k < bl.corner_begin[1]; ++k) {
+      const model::Point q = bl.world[k].corner;
+      if (std::hypot(p.x - q.x, p.y - q.y) > 1e-12) continue;
+      EXPECT_NEAR(bl.shape[c].radius, bl.shape[k].radius, 1e-12);
+      EXPECT_NEAR(bl.world[c].centre.x, bl.world[k].centre.x, 1e-12);
+      EXPECT_NEAR(bl.world[c].centre.y, bl.world[k].centre.y, 1e-12);
+      ++matched;
+    }
+    // The arc touches the edge that leaves the corner: its centre lies R inside that edge.
+    const model::Point e = bl.world[bl.shape[c].next].corner - p;
+    const double inside = geometry::cross(e, bl.world[c].centre - p) / std::hypot(e.x, e.y);
+    EXPECT_NEAR(inside, bl.shape[c].radius, 1e-12);
+  }
+  EXPECT_EQ(matched, poly.size());
+  EXPECT_GT(bl.corner_begin[2] - bl.corner_begin[1], poly.size());
+}
