@@ -108,7 +108,7 @@ std::vector<Mineral> read_minerals(TomlSection& top, bool need_fractions) {
     minerals.push_back(x);
   }
   if (need_fractions && std::abs(sum - 1) > 1e-3)
-    top.fail_at(n, "mineral", fmt::format("the minerals' fractions sum to {} (must be 1)", sum));
+    top.fail_at(n, "mineral", fmt::format("the minerals' fractions sum to {:.6g} (must be 1)", sum));
   return minerals;
 }
 
