@@ -42,9 +42,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s %s: %s\n", c.id.c_str(), results.back().name.c_str(),
                  results.back().pass() ? "pass" : "FAIL");
   }
+  for (const auto& [side, grain] : {std::pair{0.05, 1.52e-3}, std::pair{0.01, 1.52e-3}})
+    for (auto& r : g1_mineral_fractions(side, grain)) {
+      std::fprintf(stderr, "G1 %s: %s\n", r.name.c_str(), r.pass() ? "pass" : "FAIL");
+      results.push_back(r);
+    }
   if (!analytic_only)
-    for (const auto& published :
-         {b1_marble_ucs, b1_marble_triaxial, b2_marble_cyclic, marble_tension})
+    for (const auto& published : {b1_marble_ucs, b1_marble_triaxial, b2_marble_cyclic,
+                                  marble_tension, b5_granite, g2_voronoi_vs_trigon})
       for (auto& r : published(argv[1], argv[2])) {
         std::fprintf(stderr, "%s %s: %s\n", r.id.c_str(), r.name.c_str(),
                      r.informational ? "info"
