@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <numeric>
 #include <random>
@@ -241,8 +240,6 @@ Tessellation tessellate_grains(const TessellationSettings& settings, const Grain
     for (const Polygon& p : grains) areas.push_back(polygon_area(p));
     grain_mineral = assign_minerals(areas, g.fractions, s.seed);
   }
-  require(g.sub_block_size < std::sqrt(std::abs(polygon_area(grains.front()))) * 1e3,
-          "sub_block_size is far larger than the grains");
   std::vector<Polygon> cells;
   std::vector<std::int32_t> tags;
   const double extent = std::max(s.outline.width, std::max(s.outline.height, s.outline.diameter));
