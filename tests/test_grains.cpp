@@ -86,6 +86,9 @@ void expect_matching_edges(geometry::SubBlocks kind) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
   for (const auto& b : t.blocks) {
     EXPECT_GT(area(t, b), 0.0);
+    if (kind == geometry::SubBlocks::trigon) {
+      EXPECT_EQ(b.size(), 3u);
+    }
     for (std::size_t i = 0; i < b.size(); ++i) {
       const std::uint32_t p = b[i], q = b[(i + 1) % b.size()];
       ++uses[{std::min(p, q), std::max(p, q)}];
@@ -253,7 +256,8 @@ TEST(Grains, BadGrainKeysNameFileLineAndKey) {
   const fs::path dir = vorodec::testing::out_dir("bad_grain_keys");
   const std::string text = slurp(kSmall);
   const std::vector<std::pair<std::pair<std::string, std::string>, std::string>> cases = {
-      {{"fraction = 0.4", "fraction = 0.3"}, ":15: key 'mineral': the minerals' fractions sum to 0.9 "},
+      {{"fraction = 0.4", "fraction = 0.3"},
+       ":15: key 'mineral': the minerals' fractions sum to 0.9 "},
       {{"[joints.pair.\"quartz-feldspar\"]", "[joints.pair.\"quartz-mica\"]"},
        "key 'joints.pair.quartz-mica': must name two minerals"},
       {{"sub_blocks = \"voronoi\"", "sub_blocks = \"squares\""}, ":11: key 'specimen.sub_blocks'"},
