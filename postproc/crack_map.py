@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """Draws the blocks and cracks of one frame of a vorodec ParaView series as a PNG.
 
-Usage: postproc/crack_map.py results/ucs_marble [-o out.png] [--frame N] [--shade ARRAY]
+Usage: postproc/crack_map.py results/ucs_marble [-o out.png] [--frame N] [--shade ARRAY] [--by-class]
        postproc/crack_map.py results/ucs_marble/blocks.pvd ...
 
 Reads blocks.pvd and cracks.pvd of the folder (or of its vtk/ subfolder) and draws the last frame
 (or frame N, negative counts from the end): blocks as light grey polygons with thin edges, cracks red = tensile,
 blue = shear. --shade failed_fraction (or any other scalar block cell array) shades the blocks in
 greys by that array instead, with a colour bar: failed_fraction is the fraction of each block's
-initial bonded contacts that have failed. Only matplotlib and VTK's XML reader are used, so no X
+initial bonded contacts that have failed. --by-class colours the cracks of a grain-based specimen
+by class (intergranular/transgranular x tensile/shear) on blocks tinted by mineral. Only matplotlib and VTK's XML reader are used, so no X
 server is needed. Default output: <folder>/crack_map.png.
 
 Needs Debian's /usr/bin/python3 with python3-vtk9, python3-numpy and python3-matplotlib.
@@ -29,6 +30,9 @@ from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader  # noqa: E402
 
 CRACK_STYLE = {1: ("tensile", "red"), 2: ("shear", "blue")}
+# Grain-based specimens: the cracks' `class` array (--by-class).
+CLASS_STYLE = {1: ("intergranular tensile", "red"), 2: ("intergranular shear", "blue"),
+               3: ("transgranular tensile", "orange"), 4: ("transgranular shear", "green")}
 
 
 def read_pvd(pvd):
@@ -73,7 +77,7 @@ def cell_array(pd, name):
     return None if a is None else vtk_to_numpy(a)
 
 
-def draw(folder, frame, out, shade=None):
+def draw(folder, frame, out, shade=None, by_class=False):
     blocks = read_pvd(os.path.join(folder, "blocks.pvd"))
     t, blocks_vtp = blocks[frame]
     cracks_vtp = None
@@ -96,7 +100,7 @@ def draw(folder, frame, out, shade=None):
     w, h = (7.5, 7.5 * aspect) if aspect <= 1.0 else (7.5 / aspect, 7.5)
     fig, ax = plt.subplots(figsize=(w + 1.3, h + 1.0), dpi=200)
     edge_lw = float(np.clip(8.0 / np.sqrt(max(nblocks, 1)), 0.1, 0.8))
-    if shade is None:
+    if shade is None and not by_class:
         ax.add_collection(PolyCollection(polys, facecolors="0.85", edgecolors="0.45",
                                          linewidths=edge_lw))
     else:
@@ -109,16 +113,28 @@ def draw(folder, frame, out, shade=None):
         ax.add_collection(pc)
         fig.colorbar(pc, ax=ax, shrink=0.6, pad=0.02, label=shade)
 
+    style = CLASS_STYLE if by_class else CRACK_STYLE
+    if by_class:
+        mineral = cell_array(bpd, "mineral")
+        if mineral is None:
+            raise ValueError("%s has no 'mineral' array: not a grain-based specimen" % blocks_vtp)
+        # Blocks in pale tones by mineral (platens, -1, in grey), so the cracks stand out.
+        tones = ["#f3e6c8", "#dfe9f3", "#e8dcef", "#dcefdc", "#f3dcdc", "#ececec"]
+        ax.add_collection(PolyCollection(
+            polys, facecolors=[tones[m % (len(tones) - 1)] if m >= 0 else tones[-1]
+                               for m in mineral],
+            edgecolors="0.6", linewidths=edge_lw))
     counts = {}
     if cracks_vtp is not None:
         cpd = read_vtp(cracks_vtp)
         cxy = points_xy(cpd)
         segs = [cxy[ids] for ids in cells(cpd.GetLines())]
-        types = cell_array(cpd, "type")
+        array = "class" if by_class else "type"
+        types = cell_array(cpd, array)
         if segs and types is None:
-            raise ValueError("%s has no 'type' cell array" % cracks_vtp)
+            raise ValueError("%s has no '%s' cell array" % (cracks_vtp, array))
         crack_lw = float(np.clip(4.0 * edge_lw, 0.6, 2.0))
-        for code, (label, colour) in CRACK_STYLE.items():
+        for code, (label, colour) in style.items():
             sel = [s for s, ty in zip(segs, types if types is not None else []) if ty == code]
             counts[label] = len(sel)
             if sel:
@@ -133,7 +149,7 @@ def draw(folder, frame, out, shade=None):
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     handles = [Line2D([], [], color=c, lw=2, label="%s (%d)" % (l, counts.get(l, 0)))
-               for l, c in CRACK_STYLE.values()]
+               for l, c in style.values()]
     ax.legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.9)
     name = os.path.basename(os.path.abspath(folder))
     if name == "vtk":  # the series folder of a run: name the run
@@ -153,6 +169,8 @@ def main(argv=None):
     p.add_argument("--frame", type=int, default=-1, help="frame index, negative from the end")
     p.add_argument("--shade", metavar="ARRAY",
                    help="shade blocks by this block cell array, e.g. failed_fraction")
+    p.add_argument("--by-class", action="store_true",
+                   help="colour cracks by grain class (grain-based specimens)")
     args = p.parse_args(argv)
     folder = args.series if os.path.isdir(args.series) else os.path.dirname(os.path.abspath(args.series))
     out = args.output or os.path.join(folder, "crack_map.png")
@@ -161,7 +179,7 @@ def main(argv=None):
             os.path.join(folder, "vtk", "blocks.pvd")):
         folder = os.path.join(folder, "vtk")
     try:
-        t, nblocks, counts = draw(folder, args.frame, out, args.shade)
+        t, nblocks, counts = draw(folder, args.frame, out, args.shade, args.by_class)
     except (OSError, ValueError, IndexError, ET.ParseError) as e:
         print("crack_map: %s" % e, file=sys.stderr)
         return 1

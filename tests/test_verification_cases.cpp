@@ -54,3 +54,7 @@ TEST(Verification, A7WeibullMeanIsA0) {
 TEST(Verification, A8LocalDampingRemovesAnalyticEnergyFraction) {
   EXPECT_TRUE(passes(a8_local_damping()));
 }
+
+TEST(Verification, G1MineralAreaFractionsMatchTheRequestWithinOneGrain) {
+  for (const auto& r : g1_mineral_fractions(0.01, 1.52e-3)) EXPECT_TRUE(passes(r));
+}

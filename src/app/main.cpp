@@ -51,6 +51,17 @@ std::vector<io::Override> parse_sets(const std::vector<std::string>& sets) {
 void print_report(const geometry::Tessellation& t, const io::ModelConfig& cfg) {
   if (cfg.specimen_file) fmt::print("specimen loaded from {}\n", cfg.specimen_file->string());
   fmt::print("{}", geometry::format_report(t.report));
+  if (cfg.grains) {
+    double total = 0;
+    for (const double a : t.mineral_area) total += a;
+    fmt::print(
+        "  grains: {}, {} sub-blocks ({})\n", t.grain_mineral.size(), t.blocks.size(),
+        cfg.grains->settings.sub_blocks == geometry::SubBlocks::trigon ? "trigon" : "voronoi");
+    for (std::size_t m = 0; m < cfg.grains->minerals.size(); ++m)
+      fmt::print("  mineral {}: area fraction {:.4f} (requested {:.4f})\n",
+                 cfg.grains->minerals[m].name, t.mineral_area[m] / total,
+                 cfg.grains->minerals[m].fraction);
+  }
   for (const auto& w : t.report.warnings) fmt::print(stderr, "warning: specimen: {}\n", w);
 }
 

@@ -10,6 +10,7 @@
 
 #include "damage_output.hpp"
 #include "progress.hpp"
+#include "vorodec/geometry/grains.hpp"
 #include "vorodec/io/csv_writer.hpp"
 #include "vorodec/io/specimen_file.hpp"
 #include "vorodec/io/vtk_writer.hpp"
@@ -18,6 +19,7 @@
 #include "vorodec/measure/cycles.hpp"
 #include "vorodec/measure/damage.hpp"
 #include "vorodec/measure/failure_stages.hpp"
+#include "vorodec/measure/grain_cracks.hpp"
 #include "vorodec/measure/specimen.hpp"
 #include "vorodec/model/build.hpp"
 #include "vorodec/model/contact_geometry.hpp"
@@ -29,6 +31,7 @@ using model::Group;
 
 geometry::Tessellation make_specimen(const io::ModelConfig& cfg) {
   if (cfg.specimen_file) return io::read_specimen(*cfg.specimen_file);
+  if (cfg.grains) return geometry::tessellate_grains(cfg.tessellation, cfg.grains->settings);
   return geometry::tessellate(cfg.tessellation);
 }
 
@@ -46,6 +49,37 @@ double mean_edge(const geometry::Tessellation& t) {
   return n ? sum / static_cast<double>(n) : 0.0;
 }
 
+// Law groups after the joints (0) and platens (1) of a grain-based specimen: the default
+// transgranular law, each mineral's own, each mineral pair's own; and the table choosing them.
+void add_grain_laws(const io::GrainConfig& g, const geometry::Tessellation& tess,
+                    std::uint64_t seed, std::vector<std::unique_ptr<laws::LawGroup>>& groups,
+                    solver::GrainLaws& table) {
+  const auto add = [&](const io::LawChoice& choice) {
+    groups.push_back(laws::find_law(choice.name)->make(choice.params, seed));
+    return static_cast<int>(groups.size() - 1);
+  };
+  const std::size_t n = g.minerals.size();
+  table.minerals = n;
+  table.grain_of_block = tess.block_grain;
+  table.mineral_of_grain = tess.grain_mineral;
+  const int trans = add(g.transgranular);
+  table.transgranular.assign(n, trans);
+  for (std::size_t m = 0; m < n; ++m)
+    if (g.inside[m]) table.transgranular[m] = add(*g.inside[m]);
+  table.intergranular.assign(n * n, 0);
+  for (const auto& p : g.pairs)
+    table.intergranular[p.a * n + p.b] = table.intergranular[p.b * n + p.a] = add(p.law);
+}
+
+std::vector<double> block_densities(const io::GrainConfig& g, const geometry::Tessellation& t) {
+  std::vector<double> density;
+  for (const std::int32_t grain : t.block_grain)
+    density.push_back(
+        g.minerals[static_cast<std::size_t>(t.grain_mineral[static_cast<std::size_t>(grain)])]
+            .density);
+  return density;
+}
+
 }  // namespace
 
 PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessellation& tess) {
@@ -55,12 +89,15 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
   if (cfg.deformable.enabled)
     deformable = model::DeformableBuild{
         cfg.deformable.zone_size, {cfg.deformable.youngs_modulus, cfg.deformable.poisson_ratio}};
-  s.model =
-      std::make_unique<model::Model>(model::build_model(tess, {cfg.density, d, true}, deformable));
+  const std::vector<double> density =
+      cfg.grains ? block_densities(*cfg.grains, tess) : std::vector<double>{};
+  s.model = std::make_unique<model::Model>(
+      model::build_model(tess, {cfg.density, d, true, density}, deformable));
   std::vector<std::unique_ptr<laws::LawGroup>> groups;
   for (const io::LawChoice* choice : {&cfg.joints, &cfg.platens})
     groups.push_back(laws::find_law(choice->name)->make(choice->params, cfg.seed));
   solver::LawTable table;
+  if (cfg.grains) add_grain_laws(*cfg.grains, tess, cfg.seed, groups, table.grains);
   const auto set = [&](Group a, Group b, int law) {
     table.law[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = law;
     table.law[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = law;
@@ -81,7 +118,8 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
 
 namespace {
 
-io::VtkFrame make_frame(const model::Model& m, const solver::Solver& solver) {
+io::VtkFrame make_frame(const model::Model& m, const solver::Solver& solver,
+                        const geometry::Tessellation& tess) {
   io::VtkFrame f;
   f.time = solver.time();
   const auto& bl = m.blocks;
@@ -124,18 +162,36 @@ io::VtkFrame make_frame(const model::Model& m, const solver::Solver& solver) {
     f.crack_end.push_back(mid + t);
     f.crack_type.push_back(e.type == laws::ContactEvent::tensile_failure ? 1 : 2);
     f.crack_time.push_back(e.time);
+    if (!tess.block_grain.empty())
+      f.crack_class.push_back(static_cast<std::int32_t>(measure::crack_class(e, tess.block_grain)) +
+                              1);
+  }
+  if (!tess.block_grain.empty()) {
+    for (std::size_t b = 0; b < bl.size(); ++b) {
+      const bool specimen = b < tess.block_grain.size();
+      const std::int32_t g = specimen ? tess.block_grain[b] : -1;
+      f.block_grain.push_back(g);
+      f.block_mineral.push_back(specimen ? tess.grain_mineral[static_cast<std::size_t>(g)] : -1);
+    }
   }
   return f;
 }
 
-void write_cracks(const std::filesystem::path& file, const std::vector<laws::CrackEvent>& cracks) {
-  const std::vector<std::string> header{"time",   "x",       "y",       "orientation_deg",
-                                        "length", "block_a", "block_b", "type"};
+// Grain-based specimens add the crack class (1-4, measure::kCrackClassNames) before the type.
+void write_cracks(const std::filesystem::path& file, const std::vector<laws::CrackEvent>& cracks,
+                  std::span<const std::int32_t> grain_of_block) {
+  std::vector<std::string> header{"time",   "x",       "y",      "orientation_deg",
+                                  "length", "block_a", "block_b"};
+  if (!grain_of_block.empty()) header.push_back("class");
+  header.push_back("type");
   io::CsvWriter csv(file, header);
   for (const auto& e : cracks) {
-    const double v[] = {e.time,   e.x,         e.y,        measure::crack_orientation_deg(e),
-                        e.length, double(e.a), double(e.b)};
-    csv.row(v, e.type == laws::ContactEvent::tensile_failure ? "tensile" : "shear");
+    double v[] = {e.time,   e.x,         e.y,         measure::crack_orientation_deg(e),
+                  e.length, double(e.a), double(e.b), 0.0};
+    std::size_t n = 7;
+    if (!grain_of_block.empty()) v[n++] = double(measure::crack_class(e, grain_of_block) + 1);
+    csv.row(std::span<const double>(v, n),
+            e.type == laws::ContactEvent::tensile_failure ? "tensile" : "shear");
   }
 }
 
@@ -162,9 +218,31 @@ void write_cycles(const std::filesystem::path& file,
   }
 }
 
+// Grain-based specimens: requested and achieved mineral area fractions, and the crack classes.
+std::string grain_summary(const io::ModelConfig& cfg, const geometry::Tessellation& tess,
+                          const measure::GrainCracks& g) {
+  if (!cfg.grains) return "";
+  double total = 0;
+  for (const double a : tess.mineral_area) total += a;
+  std::string minerals;
+  for (std::size_t m = 0; m < cfg.grains->minerals.size(); ++m)
+    minerals +=
+        fmt::format("{}\n    \"{}\": {{\"requested\": {:.6g}, \"achieved\": {:.6g}}}", m ? "," : "",
+                    cfg.grains->minerals[m].name, cfg.grains->minerals[m].fraction,
+                    m < tess.mineral_area.size() ? tess.mineral_area[m] / total : 0.0);
+  std::string cracks;
+  for (std::size_t k = 0; k < measure::kCrackClasses; ++k)
+    cracks += fmt::format("{}\n    \"{}\": {{\"count\": {}, \"length_m\": {:.6g}}}", k ? "," : "",
+                          measure::kCrackClassNames[k], g.count[k], g.length[k]);
+  return fmt::format(
+      "  \"grains\": {},\n  \"mineral_area_fractions\": {{{}\n  }},\n"
+      "  \"crack_classes\": {{{}\n  }},\n",
+      tess.grain_mineral.size(), minerals, cracks);
+}
+
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,
-                   const RunSummary& s, std::size_t initial_contacts, double dt,
-                   std::size_t broken) {
+                   const RunSummary& s, std::size_t initial_contacts, double dt, std::size_t broken,
+                   const std::string& grains) {
   std::ofstream out(file);
   const auto& f = s.failure_stages;
   const std::string stages =
@@ -180,11 +258,11 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
       "  \"cycles\": {},\n"
       "  \"youngs_modulus_Pa\": {:.8g},\n  \"poisson_ratio\": {:.6g},\n"
       "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
-      "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n  \"failure_rate\": {:.6g},\n"
+      "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n{}  \"failure_rate\": {:.6g},\n"
       "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
       "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}\n}}\n",
       cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
-      s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
+      s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear, grains,
       initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
       initial_contacts, dt, s.steps, s.wall_seconds,
       s.zones ? fmt::format(",\n  \"zones\": {},\n  \"zone_stress_Pa\": {{\"xx\": {:.8g}, "
@@ -236,12 +314,17 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
                                   "kinetic_energy",
                                   "damping_energy",
                                   "friction_energy",
-                                  "breakage_energy",
-                                  "stage"};
+                                  "breakage_energy"};
   // Deformable specimens: the zones' area-weighted mean stress (compression positive, Pa).
   const bool zoned = !model.zoning.empty();
-  if (zoned)
-    header.insert(header.end() - 1, {"zone_stress_xx", "zone_stress_yy", "zone_stress_xy"});
+  if (zoned) header.insert(header.end(), {"zone_stress_xx", "zone_stress_yy", "zone_stress_xy"});
+  const bool grains = !specimen.block_grain.empty();
+  if (grains) {
+    for (const auto name : measure::kCrackClassNames) header.emplace_back(name);
+    for (const auto name : measure::kCrackClassNames)
+      header.push_back(std::string(name) + "_length");
+  }
+  header.emplace_back("stage");
   io::CsvWriter history(options.out / "history.csv", header);
   std::unique_ptr<io::VtkSeriesWriter> vtk;
   if (options.write_vtk) vtk = std::make_unique<io::VtkSeriesWriter>(options.out / "vtk");
@@ -280,10 +363,17 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         e.damping,
         e.slip,
         e.breakage};
-    if (zoned) {
-      const model::ZoneStress m = model::mean_stress(model, Group::specimen);
+    if (zoned || grains) {
       std::vector<double> full(std::begin(row), std::end(row));
-      full.insert(full.end(), {-m.xx, -m.yy, -m.xy});
+      if (zoned) {
+        const model::ZoneStress m = model::mean_stress(model, Group::specimen);
+        full.insert(full.end(), {-m.xx, -m.yy, -m.xy});
+      }
+      if (grains) {
+        const measure::GrainCracks g = measure::grain_cracks(solver.cracks(), specimen.block_grain);
+        for (const std::size_t n : g.count) full.push_back(double(n));
+        full.insert(full.end(), g.length.begin(), g.length.end());
+      }
       history.row(full, stage);
     } else {
       history.row(row, stage);
@@ -297,7 +387,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   // A VTK output time: rose.csv row always, VTK frame (with the damage fields) unless --no-vtk.
   const auto output_frame = [&](const std::string& stage) {
     io::VtkFrame frame;
-    if (vtk) frame = make_frame(model, solver);
+    if (vtk) frame = make_frame(model, solver, specimen);
     damage.output_time(model, solver, stage, state.axial_stress, vtk ? &frame : nullptr);
     if (vtk) vtk->write(frame);
   };
@@ -382,7 +472,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   progress.finish();
   history.flush();
   count_cracks();
-  write_cracks(options.out / "cracks.csv", solver.cracks());
+  write_cracks(options.out / "cracks.csv", solver.cracks(), specimen.block_grain);
   // A pulled specimen (direct tension): its elastic constants come from the tensile branch.
   const double sense = -trough > peak ? -1.0 : 1.0;
   for (auto* h : {&h_strain, &h_stress, &h_lateral})
@@ -417,8 +507,10 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   summary.cracks_shear = n_shear;
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  write_summary(options.out / "summary.json", cfg, summary, solver.initial_bonded_contacts(),
-                solver.dt(), n_tensile + n_shear);
+  write_summary(
+      options.out / "summary.json", cfg, summary, solver.initial_bonded_contacts(), solver.dt(),
+      n_tensile + n_shear,
+      grain_summary(cfg, specimen, measure::grain_cracks(solver.cracks(), specimen.block_grain)));
   return summary;
 }
 

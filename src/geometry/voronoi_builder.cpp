@@ -838,7 +838,9 @@ Candidate build_for_mean_edge(const OutlinePolygon& outline, const TessellationS
 }
 
 // Blocks along the Hilbert curve, vertices in order of first use: neighbours near in memory.
-void renumber_along_hilbert(std::vector<Point>& vertices, Blocks& blocks) {
+// Per-block tags (if any) follow their blocks.
+void renumber_along_hilbert(std::vector<Point>& vertices, Blocks& blocks,
+                            std::vector<std::int32_t>& tags) {
   std::vector<Point> centroids;
   centroids.reserve(blocks.size());
   for (const Block& block : blocks) centroids.push_back(detail::centroid(vertices, block));
@@ -848,7 +850,9 @@ void renumber_along_hilbert(std::vector<Point>& vertices, Blocks& blocks) {
   new_vertices.reserve(vertices.size());
   Blocks new_blocks;
   new_blocks.reserve(blocks.size());
+  std::vector<std::int32_t> new_tags;
   for (const std::size_t b : hilbert_order(centroids)) {
+    if (!tags.empty()) new_tags.push_back(tags[b]);
     Block block = std::move(blocks[b]);
     for (std::uint32_t& v : block) {
       if (new_index[v] == unused) {
@@ -861,6 +865,7 @@ void renumber_along_hilbert(std::vector<Point>& vertices, Blocks& blocks) {
   }
   vertices = std::move(new_vertices);
   blocks = std::move(new_blocks);
+  tags = std::move(new_tags);
 }
 
 // Disc segments ~ half the mean edge, but never shorter than twice min_edge_length.
@@ -876,6 +881,84 @@ double disc_segment_length(const TessellationSettings& s) {
 
 }  // namespace
 
+namespace detail {
+
+double outline_segment_length(const TessellationSettings& settings) {
+  return disc_segment_length(settings);
+}
+
+Polygon random_points_in(const Polygon& region, std::uint64_t seed, std::size_t count) {
+  Point lo = region.front(), hi = region.front();
+  for (const Point p : region) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  const auto inside = [&](Point p) {
+    for (std::size_t k = 0; k < region.size(); ++k)
+      if (cross(region[(k + 1) % region.size()] - region[k], p - region[k]) <= 0) return false;
+    return true;
+  };
+  UnitRandom random(seed);
+  Polygon points;
+  points.reserve(count);
+  while (points.size() < count) {
+    const Point p{lo.x + random.next() * (hi.x - lo.x), lo.y + random.next() * (hi.y - lo.y)};
+    if (inside(p)) points.push_back(p);
+  }
+  return points;
+}
+
+std::vector<Polygon> clipped_voronoi(const Polygon& seeds, const Polygon& region) {
+  const Neighbours neighbours = delaunay_neighbours(seeds);
+  HalfPlaneClipper clip;
+  std::vector<Polygon> cells(seeds.size());
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    const Point p = seeds[i];
+    Polygon cell;
+    cell.reserve(region.size());
+    for (const Point v : region) cell.push_back(v - p);
+    for (const std::uint32_t j : neighbours[i]) {
+      const Point n = seeds[j] - p;
+      clip(cell, n, dot(n, n) / 2);
+    }
+    for (Point& v : cell) v = v + p;
+    cells[i] = std::move(cell);
+  }
+  return cells;
+}
+
+Point area_centroid(const Polygon& polygon) {
+  return polygon_centroid(polygon);
+}
+
+void weld_polygons(const std::vector<Polygon>& polygons, double tolerance,
+                   std::vector<Point>& vertices, Blocks& blocks) {
+  Candidate c = weld_cells(polygons, tolerance);
+  vertices = std::move(c.vertices);
+  blocks = std::move(c.blocks);
+}
+
+Tessellation assemble(const std::vector<Polygon>& cells, std::vector<std::int32_t> tags,
+                      const TessellationSettings& settings, double segment_length) {
+  const OutlinePolygon outline(settings.outline, segment_length);
+  const double tolerance = kWeldTolerance * outline.extent();
+  Candidate c = weld_cells(cells, tolerance);
+  split_t_junctions(c.vertices, c.blocks, tolerance);
+  if (settings.min_edge_length > 0) {
+    c.collapse = EdgeCollapser(c, outline, settings.min_edge_length, tolerance).run();
+    require_proper_blocks(c, settings.min_edge_length);
+  }
+  renumber_along_hilbert(c.vertices, c.blocks, tags);
+  Tessellation result;
+  result.report = build_report(c.vertices, c.blocks, outline.area(), c.collapse);
+  result.vertices = std::move(c.vertices);
+  result.blocks = std::move(c.blocks);
+  result.block_grain = std::move(tags);
+  return result;
+}
+
+}  // namespace detail
+
 Tessellation tessellate(const TessellationSettings& settings) {
   validate(settings);
   const OutlinePolygon outline(settings.outline, disc_segment_length(settings));
@@ -883,7 +966,8 @@ Tessellation tessellate(const TessellationSettings& settings) {
       settings.block_count > 0
           ? build_candidate(outline, settings, static_cast<std::size_t>(settings.block_count))
           : build_for_mean_edge(outline, settings);
-  renumber_along_hilbert(c.vertices, c.blocks);
+  std::vector<std::int32_t> no_tags;
+  renumber_along_hilbert(c.vertices, c.blocks, no_tags);
   Tessellation result;
   result.report = detail::build_report(c.vertices, c.blocks, outline.area(), c.collapse);
   result.vertices = std::move(c.vertices);

@@ -6,6 +6,7 @@
 
 #include "override.hpp"
 #include "toml_section.hpp"
+#include "vorodec/io/grain_file.hpp"
 
 namespace vorodec::io {
 
@@ -69,8 +70,97 @@ LawChoice read_law(TomlSection& sec, const std::string& default_law) {
   return choice;
 }
 
-void read_specimen(TomlSection sec, ModelConfig& cfg) {
+void read_outline(TomlSection& sec, geometry::Outline& outline) {
+  const std::string rect = "rectangle";
+  const std::string shape = sec.string("shape", &rect);
+  if (shape == "rectangle") {
+    outline.kind = geometry::OutlineKind::rectangle;
+    outline.width = sec.positive("width", laws::required);
+    outline.height = sec.positive("height", laws::required);
+  } else if (shape == "disc") {
+    outline.kind = geometry::OutlineKind::disc;
+    outline.diameter = sec.positive("diameter", laws::required);
+  } else {
+    sec.fail("shape", fmt::format("must be \"rectangle\" or \"disc\" (got \"{}\")", shape));
+  }
+}
+
+std::vector<Mineral> read_minerals(TomlSection& top, bool need_fractions) {
+  const toml::node* n = top.node("mineral");
+  if (!n || !n->is_array_of_tables())
+    top.fail("mineral",
+             "a grain-based specimen needs [[mineral]] tables (name, fraction, density)");
+  std::vector<Mineral> minerals;
+  double sum = 0;
+  const toml::array& list = *n->as_array();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    TomlSection m(*list[i].as_table(), fmt::format("mineral[{}]", i), top.file());
+    Mineral x;
+    x.name = m.string("name", nullptr);
+    for (const Mineral& y : minerals)
+      if (y.name == x.name) m.fail("name", fmt::format("mineral '{}' is given twice", x.name));
+    x.fraction =
+        need_fractions || m.has("fraction") ? m.non_negative("fraction", laws::required) : 0.0;
+    if (x.fraction > 1) m.fail("fraction", "must be an area fraction between 0 and 1");
+    x.density = m.positive("density", laws::required);
+    m.finish();
+    sum += x.fraction;
+    minerals.push_back(x);
+  }
+  if (need_fractions && std::abs(sum - 1) > 1e-3)
+    top.fail_at(n, "mineral",
+                fmt::format("the minerals' fractions sum to {:.6g} (must be 1)", sum));
+  return minerals;
+}
+
+void read_grain_specimen(TomlSection& sec, TomlSection& top, ModelConfig& cfg) {
+  GrainConfig g;
+  auto& t = cfg.tessellation;
+  if (sec.has("grain_file")) {
+    std::filesystem::path p = sec.string("grain_file", nullptr);
+    if (p.is_relative()) p = cfg.file.parent_path() / p;
+    if (!std::filesystem::exists(p))
+      sec.fail("grain_file", fmt::format("grain file '{}' does not exist", p.string()));
+    g.grain_file = p;
+  } else {
+    read_outline(sec, t.outline);
+    g.settings.grain_size = sec.positive("grain_size", laws::required);
+  }
+  const std::string voronoi = "voronoi";
+  const std::string sub = sec.string("sub_blocks", &voronoi);
+  if (sub == "trigon")
+    g.settings.sub_blocks = geometry::SubBlocks::trigon;
+  else if (sub != "voronoi")
+    sec.fail("sub_blocks", fmt::format("must be \"voronoi\" or \"trigon\" (got \"{}\")", sub));
+  g.settings.sub_block_size = sec.positive("sub_block_size", laws::required);
+  if (g.settings.grain_size > 0 && g.settings.sub_block_size > g.settings.grain_size)
+    sec.fail("sub_block_size", "must not be larger than grain_size");
+  g.settings.sub_block_lloyd_iterations =
+      static_cast<int>(sec.integer("sub_block_lloyd_iterations", 3, 0));
+  t.lloyd_iterations = static_cast<int>(sec.integer("lloyd_iterations", 0, 0));
+  t.min_edge_length = sec.non_negative("min_edge_length", 0.0);
+  sec.finish();
+  g.minerals = read_minerals(top, !g.grain_file);
+  std::vector<std::string> names;
+  for (const Mineral& m : g.minerals) {
+    g.settings.fractions.push_back(m.fraction);
+    names.push_back(m.name);
+    cfg.density += m.fraction * m.density;
+  }
+  if (g.grain_file) {
+    g.settings.grains = read_grain_file(*g.grain_file, names);
+    cfg.density = g.minerals.front().density;  // platens only: their mass never enters
+  }
+  cfg.grains = std::move(g);
+}
+
+void read_specimen(TomlSection sec, TomlSection& top, ModelConfig& cfg) {
   cfg.specimen_line = sec.line();
+  const std::string voronoi = "voronoi";
+  const std::string kind = sec.string("kind", &voronoi);
+  if (kind == "grains") return read_grain_specimen(sec, top, cfg);
+  if (kind != "voronoi")
+    sec.fail("kind", fmt::format("must be \"voronoi\" or \"grains\" (got \"{}\")", kind));
   if (sec.has("file")) {
     std::filesystem::path p = sec.string("file", nullptr);
     if (p.is_relative()) p = cfg.file.parent_path() / p;
@@ -81,18 +171,7 @@ void read_specimen(TomlSection sec, ModelConfig& cfg) {
     return;
   }
   auto& t = cfg.tessellation;
-  const std::string rect = "rectangle";
-  const std::string shape = sec.string("shape", &rect);
-  if (shape == "rectangle") {
-    t.outline.kind = geometry::OutlineKind::rectangle;
-    t.outline.width = sec.positive("width", laws::required);
-    t.outline.height = sec.positive("height", laws::required);
-  } else if (shape == "disc") {
-    t.outline.kind = geometry::OutlineKind::disc;
-    t.outline.diameter = sec.positive("diameter", laws::required);
-  } else {
-    sec.fail("shape", fmt::format("must be \"rectangle\" or \"disc\" (got \"{}\")", shape));
-  }
+  read_outline(sec, t.outline);
   if (sec.has("block_count") == sec.has("mean_edge_length"))
     sec.fail("block_count", "give exactly one of 'block_count' and 'mean_edge_length'");
   t.block_count = static_cast<int>(sec.integer("block_count", 0, 2));
@@ -100,6 +179,71 @@ void read_specimen(TomlSection sec, ModelConfig& cfg) {
   t.lloyd_iterations = static_cast<int>(sec.integer("lloyd_iterations", 0, 0));
   t.min_edge_length = sec.non_negative("min_edge_length", 0.0);
   sec.finish();
+}
+
+std::size_t mineral_index(TomlSection& sec, std::string_view key, std::string_view name,
+                          const std::vector<Mineral>& minerals) {
+  for (std::size_t m = 0; m < minerals.size(); ++m)
+    if (minerals[m].name == name) return m;
+  sec.fail(key, fmt::format("unknown mineral '{}'", name));
+}
+
+// A law that starts from `base` and replaces the keys `over` gives.
+LawChoice read_law_over(const toml::table& base, const toml::table& over, const std::string& path,
+                        const std::string& file) {
+  toml::table merged = base;
+  for (const auto& [key, node] : over) merged.insert_or_assign(key, node);
+  TomlSection sec(merged, path, file);
+  LawChoice law = read_law(sec, "mohr_coulomb");
+  sec.finish();
+  return law;
+}
+
+// [joints.intergranular], [joints.transgranular], [joints.mineral.<name>] (transgranular inside
+// grains of that mineral) and [joints.pair."<a>-<b>"] (intergranular between those minerals).
+void read_grain_joints(TomlSection joints, GrainConfig& g) {
+  for (auto [name, law] : {std::pair{"intergranular", &g.intergranular},
+                           std::pair{"transgranular", &g.transgranular}}) {
+    TomlSection sec = joints.sub(name);
+    *law = read_law(sec, "mohr_coulomb");
+    sec.finish();
+  }
+  const toml::table& inter = *joints.table().get(std::string_view("intergranular"))->as_table();
+  const toml::table& trans = *joints.table().get(std::string_view("transgranular"))->as_table();
+  g.inside.assign(g.minerals.size(), std::nullopt);
+  if (joints.has("mineral")) {
+    TomlSection list = joints.sub("mineral");
+    for (const auto& [key, node] : list.table()) {
+      const std::size_t m = mineral_index(list, key.str(), key.str(), g.minerals);
+      if (!node.is_table()) list.fail(key.str(), "must be a table of contact law keys");
+      g.inside[m] = read_law_over(trans, *node.as_table(), list.key_path(key.str()), joints.file());
+      list.node(key.str());
+    }
+  }
+  if (joints.has("pair")) {
+    TomlSection list = joints.sub("pair");
+    for (const auto& [key, node] : list.table()) {
+      const std::string name(key.str());
+      std::optional<std::pair<std::size_t, std::size_t>> found;
+      for (std::size_t cut = name.find('-'); cut != std::string::npos;
+           cut = name.find('-', cut + 1)) {
+        std::size_t a = g.minerals.size(), b = a;
+        for (std::size_t m = 0; m < g.minerals.size(); ++m) {
+          if (g.minerals[m].name == name.substr(0, cut)) a = m;
+          if (g.minerals[m].name == name.substr(cut + 1)) b = m;
+        }
+        if (a < g.minerals.size() && b < g.minerals.size()) found = {a, b};
+      }
+      if (!found)
+        list.fail(name, "must name two minerals of [[mineral]] as \"<mineral>-<mineral>\"");
+      if (!node.is_table()) list.fail(name, "must be a table of contact law keys");
+      g.pairs.push_back(
+          {found->first, found->second,
+           read_law_over(inter, *node.as_table(), list.key_path(name), joints.file())});
+      list.node(name);
+    }
+  }
+  joints.finish();
 }
 
 loading::CyclicBlock read_cycles(TomlSection& sec, const std::string& name) {
@@ -230,25 +374,31 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
   const std::string empty;
   cfg.title = top.string("title", &empty);
   cfg.seed = static_cast<std::uint64_t>(top.integer("seed", 1, 0));
-  read_specimen(top.sub("specimen"), cfg);
+  read_specimen(top.sub("specimen"), top, cfg);
   cfg.tessellation.seed = cfg.seed;
 
-  TomlSection blocks = top.sub("blocks");
-  cfg.density = blocks.positive("density", laws::required);
-  cfg.deformable.enabled = blocks.boolean("deformable", false);
-  if (cfg.deformable.enabled) {
-    cfg.deformable.zone_size = blocks.positive("zone_size", laws::required);
-    cfg.deformable.youngs_modulus = blocks.positive("E", laws::required);
-    cfg.deformable.poisson_ratio = blocks.number("nu", laws::required);
-    if (!(cfg.deformable.poisson_ratio > -1.0 && cfg.deformable.poisson_ratio < 0.5))
-      blocks.fail("nu",
-                  fmt::format("must be > -1 and < 0.5 (got {})", cfg.deformable.poisson_ratio));
+  if (cfg.grains) {
+    if (top.has("blocks"))
+      top.fail("blocks", "a grain-based specimen takes its densities from [[mineral]] density");
+    read_grain_joints(top.sub("joints"), *cfg.grains);
+    cfg.joints = cfg.grains->intergranular;
+  } else {
+    TomlSection blocks = top.sub("blocks");
+    cfg.density = blocks.positive("density", laws::required);
+    cfg.deformable.enabled = blocks.boolean("deformable", false);
+    if (cfg.deformable.enabled) {
+      cfg.deformable.zone_size = blocks.positive("zone_size", laws::required);
+      cfg.deformable.youngs_modulus = blocks.positive("E", laws::required);
+      cfg.deformable.poisson_ratio = blocks.number("nu", laws::required);
+      if (!(cfg.deformable.poisson_ratio > -1.0 && cfg.deformable.poisson_ratio < 0.5))
+        blocks.fail("nu",
+                    fmt::format("must be > -1 and < 0.5 (got {})", cfg.deformable.poisson_ratio));
+    }
+    blocks.finish();
+    TomlSection joints = top.sub("joints");
+    cfg.joints = read_law(joints, "mohr_coulomb");
+    joints.finish();
   }
-  blocks.finish();
-
-  TomlSection joints = top.sub("joints");
-  cfg.joints = read_law(joints, "mohr_coulomb");
-  joints.finish();
 
   // Platens: frictionless, no tension, as stiff as the joints unless given.
   const double jkn_mean = cfg.joints.params.count("jkn") ? cfg.joints.params.at("jkn").mean() : 0;

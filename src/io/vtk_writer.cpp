@@ -74,6 +74,8 @@ void validate(const VtkFrame& f) {
   require_size(f.block_displacement.size(), nb, "block_displacement");
   if (!f.block_failed_fraction.empty())
     require_size(f.block_failed_fraction.size(), nb, "block_failed_fraction");
+  if (!f.block_grain.empty()) require_size(f.block_grain.size(), nb, "block_grain");
+  if (!f.block_mineral.empty()) require_size(f.block_mineral.size(), nb, "block_mineral");
   const std::size_t nc = f.contact_point.size();
   require_size(f.contact_a.size(), nc, "contact_a");
   require_size(f.contact_b.size(), nc, "contact_b");
@@ -84,6 +86,7 @@ void validate(const VtkFrame& f) {
   require_size(f.crack_end.size(), nk, "crack_end");
   require_size(f.crack_type.size(), nk, "crack_type");
   require_size(f.crack_time.size(), nk, "crack_time");
+  if (!f.crack_class.empty()) require_size(f.crack_class.size(), nk, "crack_class");
   const VtkGrid& g = f.grid;
   if (g.nx > 0 && !(g.cell > 0.0))
     throw std::invalid_argument("VtkSeriesWriter: VtkFrame::grid.cell must be positive");
@@ -167,6 +170,8 @@ vtkNew<vtkPolyData> blocks_polydata(const VtkFrame& f) {
   cd->AddArray(vector_array("displacement", f.block_displacement));
   if (!f.block_failed_fraction.empty())
     cd->AddArray(double_array("failed_fraction", f.block_failed_fraction));
+  if (!f.block_grain.empty()) cd->AddArray(int_array("grain", f.block_grain));
+  if (!f.block_mineral.empty()) cd->AddArray(int_array("mineral", f.block_mineral));
   add_time(pd, f.time);
   return pd;
 }
@@ -214,6 +219,7 @@ vtkNew<vtkPolyData> cracks_polydata(const VtkFrame& f) {
   auto* cd = pd->GetCellData();
   cd->AddArray(int_array("type", f.crack_type));
   cd->AddArray(double_array("time", f.crack_time));
+  if (!f.crack_class.empty()) cd->AddArray(int_array("class", f.crack_class));
   add_time(pd, f.time);
   return pd;
 }

@@ -20,7 +20,9 @@ void round_corner(Point prev, Point c, Point next, double d, Point& centre, doub
   radius = std::min(d * std::tan(half), 4.0 * d);
   Point bis = u + w;
   const double bl = std::sqrt(dot(bis, bis));
-  bis = bl > 0 ? (1.0 / bl) * bis : Point{-u.y, u.x};
+  // A straight corner (a T-junction split of an edge) has no bisector but round-off: the inward
+  // normal of a counter-clockwise polygon, left of the edge direction -u.
+  bis = bl > 1e-9 ? (1.0 / bl) * bis : Point{u.y, -u.x};
   centre = c + (radius / std::sin(half)) * bis;
 }
 
@@ -98,7 +100,8 @@ Model build_model(const geometry::Tessellation& tess, const BuildSettings& setti
   model.rounding_length = settings.rounding_length;
   std::vector<Point> poly;
   double xmin = std::numeric_limits<double>::max(), xmax = -xmin, ymin = xmin, ymax = -xmin;
-  for (const auto& blk : tess.blocks) {
+  for (std::size_t k = 0; k < tess.blocks.size(); ++k) {
+    const auto& blk = tess.blocks[k];
     poly.clear();
     for (std::uint32_t v : blk) {
       poly.push_back(tess.vertices[v]);
@@ -107,11 +110,13 @@ Model build_model(const geometry::Tessellation& tess, const BuildSettings& setti
       ymin = std::min(ymin, poly.back().y);
       ymax = std::max(ymax, poly.back().y);
     }
+    const double density =
+        settings.block_density.empty() ? settings.density : settings.block_density[k];
     if (deformable)
-      add_deformable_block(model, poly, settings.density, deformable->material,
-                           deformable->zone_size, Group::specimen);
+      add_deformable_block(model, poly, density, deformable->material, deformable->zone_size,
+                           Group::specimen);
     else
-      add_block(model, poly, settings.density, Group::specimen);
+      add_block(model, poly, density, Group::specimen);
   }
   if (settings.platens) {
     // Platens overhang the specimen by half its width; their mass never enters (velocity

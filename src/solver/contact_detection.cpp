@@ -246,7 +246,7 @@ DetectionStats ContactDetector::detect(model::Model& model,
     }
   };
   for (const auto& [pa, pb] : pairs) {
-    const int law = table_.for_pair(bl.group[pa], bl.group[pb]);
+    const int law = table_.for_blocks(bl, pa, pb);
     if (law < 0) continue;
     flush_old_until(pa, pb, false);
     // Old contacts of this pair.

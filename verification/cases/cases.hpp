@@ -51,6 +51,14 @@ std::vector<CaseResult> b1_marble_triaxial(const std::string& source_dir,
 std::vector<CaseResult> b2_marble_cyclic(const std::string& source_dir, const std::string& binary);
 std::vector<CaseResult> marble_tension(const std::string& source_dir, const std::string& binary);
 
+// Grain-based specimens: mineral area fractions of a side x side granite specimen (in-process,
+// one row per mineral); Voronoi against Trigon sub-blocks on the granite model's grains (shear
+// share of cracks, informational); the granite statics of VERIFICATION.md B5 (model runs).
+std::vector<CaseResult> g1_mineral_fractions(double side, double grain_size);
+std::vector<CaseResult> g2_voronoi_vs_trigon(const std::string& source_dir,
+                                             const std::string& binary);
+std::vector<CaseResult> b5_granite(const std::string& source_dir, const std::string& binary);
+
 // Stiff and extreme cases: each must finish or stop with a clear message (exit code 3), never
 // produce NaN, crash or hang.
 struct StabilityOutcome {

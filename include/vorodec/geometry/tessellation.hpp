@@ -48,6 +48,11 @@ struct Tessellation {
   std::vector<Point> vertices;
   std::vector<std::vector<std::uint32_t>> blocks;
   SpecimenReport report;
+  // Grain-based specimens only (empty otherwise): the grain of each block, the mineral of each
+  // grain (index into the model file's minerals) and the area of each mineral (m^2).
+  std::vector<std::int32_t> block_grain;
+  std::vector<std::int32_t> grain_mineral;
+  std::vector<double> mineral_area;
 };
 
 class GeometryError : public std::runtime_error {

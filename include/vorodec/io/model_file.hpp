@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "vorodec/geometry/grains.hpp"
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/laws/contact_law.hpp"
 #include "vorodec/loading/load_path.hpp"
@@ -40,6 +41,27 @@ struct LawChoice {
   laws::LawParams params;
 };
 
+struct Mineral {
+  std::string name;
+  double fraction = 0;  // requested area fraction (0..1); unused with a grain file
+  double density = 0;   // kg/m^3
+};
+
+// A grain-based specimen ([specimen] kind = "grains"): minerals and the contact laws inside grains
+// (transgranular) and between grains (intergranular), by mineral and mineral pair.
+struct GrainConfig {
+  geometry::GrainSettings settings;
+  std::optional<std::filesystem::path> grain_file;
+  std::vector<Mineral> minerals;
+  LawChoice intergranular, transgranular;        // defaults
+  std::vector<std::optional<LawChoice>> inside;  // per mineral: its own transgranular law
+  struct Pair {
+    std::size_t a, b;  // minerals
+    LawChoice law;     // intergranular law between grains of these minerals
+  };
+  std::vector<Pair> pairs;
+};
+
 struct OutputSettings {
   long history_steps = 200;       // steps between history rows
   long vtk_steps = 20000;         // steps between VTK frames (also at stage ends)
@@ -65,9 +87,10 @@ struct ModelConfig {
   double density = 0;                                  // kg/m^3
   DeformableSettings deformable;                       // [blocks] deformable, zone_size, E, nu
   double rounding_length = 0;                          // m
-  LawChoice joints;                                    // specimen block to block
-  LawChoice platens;                                   // platen to specimen
-  bool platens_bonded = false;                         // glued to the specimen (direct tension)
+  LawChoice joints;  // specimen block to block (grain-based: the default intergranular law)
+  std::optional<GrainConfig> grains;  // grain-based specimen
+  LawChoice platens;                  // platen to specimen
+  bool platens_bonded = false;        // glued to the specimen (direct tension)
   solver::SolverSettings solver;
   long max_steps = 0;
   loading::LoadPath load_path;

@@ -34,6 +34,8 @@ struct VtkFrame {
   std::vector<geometry::Point> block_velocity;      // m/s
   std::vector<geometry::Point> block_displacement;  // m
   std::vector<double> block_failed_fraction;        // per block, or empty: not written
+  // Grain-based specimens: grain and mineral index per block (-1 platens), or empty.
+  std::vector<std::int32_t> block_grain, block_mineral;
   // Contacts as line segments from block A's centroid to block B's centroid through the contact
   // point.
   std::vector<geometry::Point> contact_point;         // m
@@ -46,6 +48,9 @@ struct VtkFrame {
   std::vector<geometry::Point> crack_begin, crack_end;
   std::vector<std::int32_t> crack_type;  // 1 tensile, 2 shear
   std::vector<double> crack_time;        // s
+  // Grain-based specimens, or empty: 1 intergranular tensile, 2 intergranular shear,
+  // 3 transgranular tensile, 4 transgranular shear.
+  std::vector<std::int32_t> crack_class;
   // Damage grid; nx = 0: none. Either every frame of a series has one or none has.
   VtkGrid grid;
   // Zones of the deformable blocks as triangles, corners zone_points[3 z .. 3 z + 2]; empty: none

@@ -9,9 +9,10 @@
 namespace vorodec::model {
 
 struct BuildSettings {
-  double density = 0.0;          // kg/m^3
-  double rounding_length = 0.0;  // m, UDEC corner rounding d
-  bool platens = true;           // rigid platens above and below the specimen
+  double density = 0.0;                        // kg/m^3
+  double rounding_length = 0.0;                // m, UDEC corner rounding d
+  bool platens = true;                         // rigid platens above and below the specimen
+  std::span<const double> block_density = {};  // kg/m^3 per specimen block; empty: `density`
 };
 
 // Specimen blocks zoned into constant-strain triangles of this size and material.

@@ -10,6 +10,17 @@
 
 namespace vorodec::solver {
 
+// Grain-based specimens: a specimen-specimen contact takes the law of its grains' minerals,
+// transgranular inside one grain, intergranular between two. Decided once per contact when it is
+// created, so the step loop pays nothing.
+struct GrainLaws {
+  std::vector<std::int32_t> grain_of_block;    // specimen blocks [0, n); empty: no grains
+  std::vector<std::int32_t> mineral_of_grain;  // index into the minerals
+  std::size_t minerals = 0;
+  std::vector<int> transgranular;  // law group per mineral
+  std::vector<int> intergranular;  // law group per mineral pair: a * minerals + b (symmetric)
+};
+
 // Which law group a pair of body groups uses (-1: the pair never interacts).
 struct LawTable {
   std::array<std::array<int, 3>, 3> law{{{-1, -1, -1}, {-1, -1, -1}, {-1, -1, -1}}};
@@ -22,6 +33,18 @@ struct LawTable {
   }
   bool bonds(model::Group a, model::Group b) const {
     return bond[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)];
+  }
+  GrainLaws grains;
+  // The law group of blocks a and b.
+  int for_blocks(const model::Blocks& bl, std::uint32_t a, std::uint32_t b) const {
+    const int l = for_pair(bl.group[a], bl.group[b]);
+    if (grains.grain_of_block.empty() || bl.group[a] != model::Group::specimen ||
+        bl.group[b] != model::Group::specimen)
+      return l;
+    const std::int32_t ga = grains.grain_of_block[a], gb = grains.grain_of_block[b];
+    const auto ma = static_cast<std::size_t>(grains.mineral_of_grain[static_cast<std::size_t>(ga)]);
+    const auto mb = static_cast<std::size_t>(grains.mineral_of_grain[static_cast<std::size_t>(gb)]);
+    return ga == gb ? grains.transgranular[ma] : grains.intergranular[ma * grains.minerals + mb];
   }
 };
 
