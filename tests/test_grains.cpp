@@ -276,3 +276,54 @@ TEST(Grains, BadGrainKeysNameFileLineAndKey) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string deformable_grains_model() {
+  std::string text = slurp(kSmall);
+  text.replace(text.find("density = 2610             # kg/m^3"), 35,
+               "density = 2610\nE = 70e9\nnu = 0.28");
+  text.replace(text.find("density = 2650             # kg/m^3"), 35,
+               "density = 2650\nE = 95e9\nnu = 0.08");
+  text.replace(text.find("[[mineral]]"), 11,
+               "[blocks]\ndeformable = true\nzone_size = 1e-3\n\n[[mineral]]");
+  return text;
+}
+
+}  // namespace
+
+// Deformable grain-based specimens: each zone is as stiff as its grain's mineral.
+TEST(Grains, DeformableGrainsTakeTheirMineralsElasticity) {
+  const fs::path dir = vorodec::testing::out_dir("deformable_grains");
+  const fs::path model = write(dir / "model.toml", deformable_grains_model());
+  const io::ModelConfig cfg = io::read_model_file(model);
+  const geometry::Tessellation t = app::make_specimen(cfg);
+  const app::PreparedModel p = app::prepare_model(cfg, t);
+  const model::Zoning& z = p.model->zoning;
+  ASSERT_FALSE(z.empty());
+  std::size_t per_mineral[2] = {0, 0};
+  for (std::size_t i = 0; i < z.zones.size(); ++i) {
+    const std::size_t block = z.zone_block[i];
+    const auto m =
+        static_cast<std::size_t>(t.grain_mineral[static_cast<std::size_t>(t.block_grain[block])]);
+    const double e = m == 0 ? 70e9 : 95e9, nu = m == 0 ? 0.28 : 0.08;
+    EXPECT_DOUBLE_EQ(z.zones[i].shear, e / (2 * (1 + nu))) << "zone " << i;
+    ++per_mineral[m];
+  }
+  EXPECT_GT(per_mineral[0], 0u);
+  EXPECT_GT(per_mineral[1], 0u);
+}
+
+TEST(Grains, DeformableGrainsNeedEveryMineralsElasticity) {
+  const fs::path dir = vorodec::testing::out_dir("deformable_grains_bad");
+  std::string text = deformable_grains_model();
+  text.replace(text.find("E = 95e9\nnu = 0.08"), 18, "");
+  const auto missing = run_capture("check " + write(dir / "missing.toml", text).string());
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.output.find("'quartz' has none"), std::string::npos) << missing.output;
+  text = deformable_grains_model();
+  text.replace(text.find("deformable = true"), 17, "deformable = true\ndensity = 2600");
+  const auto density = run_capture("check " + write(dir / "density.toml", text).string());
+  EXPECT_EQ(density.code, 2);
+  EXPECT_NE(density.output.find("key 'blocks.density'"), std::string::npos) << density.output;
+}

@@ -71,12 +71,16 @@ void add_grain_laws(const io::GrainConfig& g, const geometry::Tessellation& tess
     table.intergranular[p.a * n + p.b] = table.intergranular[p.b * n + p.a] = add(p.law);
 }
 
+const io::Mineral& block_mineral(const io::GrainConfig& g, const geometry::Tessellation& t,
+                                 std::size_t block) {
+  const auto grain = static_cast<std::size_t>(t.block_grain[block]);
+  return g.minerals[static_cast<std::size_t>(t.grain_mineral[grain])];
+}
+
 std::vector<double> block_densities(const io::GrainConfig& g, const geometry::Tessellation& t) {
   std::vector<double> density;
-  for (const std::int32_t grain : t.block_grain)
-    density.push_back(
-        g.minerals[static_cast<std::size_t>(t.grain_mineral[static_cast<std::size_t>(grain)])]
-            .density);
+  for (std::size_t b = 0; b < t.block_grain.size(); ++b)
+    density.push_back(block_mineral(g, t, b).density);
   return density;
 }
 
@@ -86,9 +90,15 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
   PreparedModel s;
   const double d = cfg.rounding_length > 0 ? cfg.rounding_length : 0.05 * mean_edge(tess);
   std::optional<model::DeformableBuild> deformable;
-  if (cfg.deformable.enabled)
+  if (cfg.deformable.enabled) {
     deformable = model::DeformableBuild{
         cfg.deformable.zone_size, {cfg.deformable.youngs_modulus, cfg.deformable.poisson_ratio}};
+    if (cfg.grains)  // each zone takes its mineral's elasticity
+      for (std::size_t b = 0; b < tess.block_grain.size(); ++b) {
+        const io::Mineral& m = block_mineral(*cfg.grains, tess, b);
+        deformable->block_material.push_back({m.youngs_modulus, m.poisson_ratio});
+      }
+  }
   const std::vector<double> density =
       cfg.grains ? block_densities(*cfg.grains, tess) : std::vector<double>{};
   s.model = std::make_unique<model::Model>(

@@ -103,6 +103,14 @@ std::vector<Mineral> read_minerals(TomlSection& top, bool need_fractions) {
         need_fractions || m.has("fraction") ? m.non_negative("fraction", laws::required) : 0.0;
     if (x.fraction > 1) m.fail("fraction", "must be an area fraction between 0 and 1");
     x.density = m.positive("density", laws::required);
+    if (m.has("E")) x.youngs_modulus = m.positive("E", laws::required);
+    if (m.has("nu")) {
+      x.poisson_ratio = m.number("nu", laws::required);
+      if (!(x.poisson_ratio > -1.0 && x.poisson_ratio < 0.5))
+        m.fail("nu", fmt::format("must be > -1 and < 0.5 (got {})", x.poisson_ratio));
+    }
+    if (m.has("E") != m.has("nu"))
+      m.fail(m.has("E") ? "E" : "nu", "give both E and nu, or neither");
     m.finish();
     sum += x.fraction;
     minerals.push_back(x);
@@ -378,8 +386,22 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
   cfg.tessellation.seed = cfg.seed;
 
   if (cfg.grains) {
-    if (top.has("blocks"))
-      top.fail("blocks", "a grain-based specimen takes its densities from [[mineral]] density");
+    if (top.has("blocks")) {  // only the zoning: density and elasticity are the minerals'
+      TomlSection blocks = top.sub("blocks");
+      for (const char* key : {"density", "E", "nu"})
+        if (blocks.has(key))
+          blocks.fail(key, "a grain-based specimen takes density, E and nu from each [[mineral]]");
+      cfg.deformable.enabled = blocks.boolean("deformable", false);
+      if (cfg.deformable.enabled) {
+        cfg.deformable.zone_size = blocks.positive("zone_size", laws::required);
+        for (const Mineral& m : cfg.grains->minerals)
+          if (m.youngs_modulus == 0)
+            blocks.fail("deformable", fmt::format("deformable grains need E and nu in every "
+                                                  "[[mineral]]; '{}' has none",
+                                                  m.name));
+      }
+      blocks.finish();
+    }
     read_grain_joints(top.sub("joints"), *cfg.grains);
     cfg.joints = cfg.grains->intergranular;
   } else {

@@ -113,8 +113,10 @@ Model build_model(const geometry::Tessellation& tess, const BuildSettings& setti
     const double density =
         settings.block_density.empty() ? settings.density : settings.block_density[k];
     if (deformable)
-      add_deformable_block(model, poly, density, deformable->material, deformable->zone_size,
-                           Group::specimen);
+      add_deformable_block(
+          model, poly, density,
+          deformable->block_material.empty() ? deformable->material : deformable->block_material[k],
+          deformable->zone_size, Group::specimen);
     else
       add_block(model, poly, density, Group::specimen);
   }

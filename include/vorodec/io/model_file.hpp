@@ -45,6 +45,8 @@ struct Mineral {
   std::string name;
   double fraction = 0;  // requested area fraction (0..1); unused with a grain file
   double density = 0;   // kg/m^3
+  // Pa and plane-strain ratio of the mineral's zones when blocks are deformable (0: not given).
+  double youngs_modulus = 0, poisson_ratio = 0;
 };
 
 // A grain-based specimen ([specimen] kind = "grains"): minerals and the contact laws inside grains

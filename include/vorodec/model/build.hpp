@@ -1,6 +1,7 @@
 #pragma once
 // Turns a tessellation into rigid blocks (mass properties, rounded corners) plus loading platens.
 #include <optional>
+#include <vector>
 #include <span>
 
 #include "vorodec/geometry/tessellation.hpp"
@@ -19,6 +20,7 @@ struct BuildSettings {
 struct DeformableBuild {
   double zone_size = 0.0;  // m, longest zone edge
   ElasticMaterial material;
+  std::vector<ElasticMaterial> block_material = {};  // per specimen block; empty: `material`
 };
 
 Model build_model(const geometry::Tessellation& tess, const BuildSettings& settings,
