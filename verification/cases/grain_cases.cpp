@@ -131,6 +131,7 @@ std::vector<CaseResult> b5_granite(const std::string& source_dir, const std::str
   add("UCS (Pa)", 129.6e6, json_number(u.summary, "peak_stress_Pa"), u, ucs);
   add("Young's modulus (Pa)", 42.3e9, json_number(u.summary, "youngs_modulus_Pa"), u, ucs);
   add("Poisson's ratio", 0.21, json_number(u.summary, "poisson_ratio"), u, ucs);
+  r.push_back(energy_balance("B5", u, ucs));
   // The loading rate must not decide the UCS: the same model at half the platen speed.
   const ModelRun h = run_model(binary, dir / "ucs_granite.toml", base / "b5_ucs_half",
                                "--set stage[0].platen_velocity=2.5e-3");

@@ -224,6 +224,7 @@ std::vector<CaseResult> b2_marble_cyclic(const std::string& source_dir, const st
       run.exit_code);
   const std::string b2 = paper + ", B2";
   std::vector<CaseResult> r;
+  r.push_back(energy_balance("B2", run, settings));
   r.push_back(relative("B2", "secant modulus of the first loading (Pa)",
                        b2 + ": starts at about 30 GPa", 30e9, cyc.number(0, "secant_modulus_Pa"),
                        0.10, settings, run.seconds));
@@ -315,6 +316,8 @@ std::vector<CaseResult> marble_tension(const std::string& source_dir, const std:
                        "same contacts, linear before cracking: equal moduli (B1 target 29.2 GPa)",
                        29.22e9, json_number(pull.summary, "youngs_modulus_Pa"), 0.05,
                        "models/tension_marble.toml", pull.seconds));
+  r.push_back(energy_balance("BT", pull, "models/tension_marble.toml (direct tension)"));
+  r.push_back(energy_balance("BT", disc, "models/brazilian_marble.toml (Brazilian disc)"));
   return r;
 }
 

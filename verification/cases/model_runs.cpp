@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "cases.hpp"
+
 namespace vorodec::verification {
 
 namespace {
@@ -69,6 +71,31 @@ Table read_table(const std::filesystem::path& csv) {
   while (std::getline(in, line))
     if (!line.empty()) t.rows.push_back(split(line));
   return t;
+}
+
+CaseResult energy_balance(const std::string& id, const ModelRun& run, const std::string& settings) {
+  CaseResult e{id,
+               "energy balance at the end of the run (imbalance / boundary work)",
+               "boundary work = contact strain + kinetic + damping + friction + breakage",
+               0,
+               0,
+               1.0,
+               0.01,
+               settings,
+               run.seconds};
+  const Table h = read_table(run.out / "history.csv");
+  if (h.rows.empty()) return e;
+  const std::size_t last = h.rows.size() - 1;
+  const auto column = [&](const char* name) { return h.number(last, name); };
+  const double work = column("boundary_work");
+  const double stored = column("strain_energy") + column("kinetic_energy") +
+                        column("damping_energy") + column("friction_energy") +
+                        column("breakage_energy");
+  if (std::isfinite(work) && std::isfinite(stored) && work != 0) {
+    e.measured = (work - stored) / work;
+    e.error = std::abs(e.measured);
+  }
+  return e;
 }
 
 }  // namespace vorodec::verification

@@ -31,4 +31,10 @@ struct Table {
 };
 Table read_table(const std::filesystem::path& csv);
 
+struct CaseResult;
+// Energy balance at the end of a run (PHYSICS section 10), from the last row of its history:
+// (boundary work - strain - kinetic - damping - friction - breakage) / boundary work, judged at
+// 1 %.
+CaseResult energy_balance(const std::string& id, const ModelRun& run, const std::string& settings);
+
 }  // namespace vorodec::verification

@@ -24,32 +24,7 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
     r.push_back(c);
   };
   add("UCS (Pa)", 47.89e6, json_number(s.summary, "peak_stress_Pa"), 0.05);
-  {
-    // Energy balance at the end of the run (PHYSICS section 10): boundary work against strain +
-    // kinetic + damping + friction + breakage, from the last history row.
-    const Table h = read_table(out / "history.csv");
-    const std::size_t last = h.rows.empty() ? 0 : h.rows.size() - 1;
-    const auto column = [&](const char* name) { return h.number(last, name); };
-    CaseResult e{"B1",
-                 "energy balance at the end of the run (imbalance / boundary work)",
-                 "boundary work = contact strain + kinetic + damping + friction + breakage",
-                 0,
-                 0,
-                 0,
-                 0.01,
-                 settings,
-                 s.seconds};
-    e.error = 1.0;
-    const double work = column("boundary_work");
-    const double stored = column("strain_energy") + column("kinetic_energy") +
-                          column("damping_energy") + column("friction_energy") +
-                          column("breakage_energy");
-    if (std::isfinite(work) && std::isfinite(stored) && work != 0) {
-      e.measured = (work - stored) / work;
-      e.error = std::abs(e.measured);
-    }
-    r.push_back(e);
-  }
+  r.push_back(energy_balance("B1", s, settings));
   add("Young's modulus at 50 % of peak (Pa)", 29.22e9, json_number(s.summary, "youngs_modulus_Pa"),
       0.05);
   add("Poisson's ratio", 0.225, json_number(s.summary, "poisson_ratio"), 0.05);
