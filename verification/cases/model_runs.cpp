@@ -98,4 +98,22 @@ CaseResult energy_balance(const std::string& id, const ModelRun& run, const std:
   return e;
 }
 
+CaseResult half_rate_ucs(const std::string& id, const std::string& binary,
+                         const std::filesystem::path& model, const ModelRun& run,
+                         const std::filesystem::path& half_out) {
+  const ModelRun h = run_model(binary, model, half_out, "--set stage[0].platen_velocity=2.5e-3");
+  CaseResult c{id,
+               "UCS at 5e-3 m/s against UCS at 2.5e-3 m/s",
+               "converged-rate reference: the same model at half the loading rate",
+               json_number(h.summary, "peak_stress_Pa"),
+               json_number(run.summary, "peak_stress_Pa"),
+               0,
+               0.02,
+               "half rate: 2.5e-3 m/s",
+               h.seconds};
+  c.error = std::abs(c.measured - c.expected) / c.expected;
+  if (std::isnan(c.error)) c.error = 1.0;
+  return c;
+}
+
 }  // namespace vorodec::verification

@@ -37,4 +37,10 @@ struct CaseResult;
 // 1 %.
 CaseResult energy_balance(const std::string& id, const ModelRun& run, const std::string& settings);
 
+// The loading rate must not decide the UCS: `run`'s peak against the same model run at half the
+// platen speed (2.5e-3 m/s, written to `half_out`), judged at 2 %.
+CaseResult half_rate_ucs(const std::string& id, const std::string& binary,
+                         const std::filesystem::path& model, const ModelRun& run,
+                         const std::filesystem::path& half_out);
+
 }  // namespace vorodec::verification
