@@ -68,6 +68,15 @@ class LawGroupOf final : public LawGroup {
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
       for (std::size_t i = lo; i < hi; ++i) {
+        // The edge's records sit at the neighbour block's corners, not in contact order: fetch
+        // them a few contacts ahead so their latency overlaps the work on this one.
+        if (i + prefetch_ahead < hi) {
+          const model::Contact& ahead = contacts[i + prefetch_ahead];
+          __builtin_prefetch(&bl.world[ahead.edge]);
+          __builtin_prefetch(&bl.shape[ahead.edge]);
+          __builtin_prefetch(&bl.world[ahead.corner]);
+          __builtin_prefetch(&bl.kin[static_cast<std::size_t>(ahead.b)]);
+        }
         model::Contact& c = contacts[i];
         const model::ContactFrame f = model::contact_frame(bl, c);
         const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
@@ -152,6 +161,8 @@ class LawGroupOf final : public LawGroup {
   }
 
  private:
+  static constexpr std::size_t prefetch_ahead = 8;
+
   // Law::evaluate for contact i (local index li) with relative velocity (vrx, vry) of a with
   // respect to b, its bookkeeping (state, crack, dissipation), and the force on a.
   [[gnu::always_inline]] inline model::Point update(StepContext& ctx, model::Contact& c,
