@@ -334,6 +334,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
     for (const auto name : measure::kCrackClassNames)
       header.push_back(std::string(name) + "_length");
   }
+  // What an adaptive velocity stage did (any stage: the applied speed and the ratio it steers by).
+  header.insert(header.end(), {"platen_velocity", "unbalanced_force_ratio"});
   header.emplace_back("stage");
   io::CsvWriter history(options.out / "history.csv", header);
   std::unique_ptr<io::VtkSeriesWriter> vtk;
@@ -350,6 +352,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
       (e.type == laws::ContactEvent::tensile_failure ? n_tensile : n_shear)++;
   };
   measure::SpecimenState state = measure::measure_specimen(model, boundary, solver);
+  double v = 0.0;  // m/s, top platen
   const auto record = [&](const std::string& stage) {
     count_cracks();
     const auto& e = solver.energy();
@@ -373,21 +376,18 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         e.damping,
         e.slip,
         e.breakage};
-    if (zoned || grains) {
-      std::vector<double> full(std::begin(row), std::end(row));
-      if (zoned) {
-        const model::ZoneStress m = model::mean_stress(model, Group::specimen);
-        full.insert(full.end(), {-m.xx, -m.yy, -m.xy});
-      }
-      if (grains) {
-        const measure::GrainCracks g = measure::grain_cracks(solver.cracks(), specimen.block_grain);
-        for (const std::size_t n : g.count) full.push_back(double(n));
-        full.insert(full.end(), g.length.begin(), g.length.end());
-      }
-      history.row(full, stage);
-    } else {
-      history.row(row, stage);
+    std::vector<double> full(std::begin(row), std::end(row));
+    if (zoned) {
+      const model::ZoneStress m = model::mean_stress(model, Group::specimen);
+      full.insert(full.end(), {-m.xx, -m.yy, -m.xy});
     }
+    if (grains) {
+      const measure::GrainCracks g = measure::grain_cracks(solver.cracks(), specimen.block_grain);
+      for (const std::size_t n : g.count) full.push_back(double(n));
+      full.insert(full.end(), g.length.begin(), g.length.end());
+    }
+    full.insert(full.end(), {v, solver.unbalanced_force_ratio()});
+    history.row(full, stage);
     h_strain.push_back(state.axial_strain);
     h_stress.push_back(state.axial_stress);
     h_lateral.push_back(state.lateral_strain);
@@ -408,7 +408,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   const auto& stages = cfg.load_path.stages;
   Progress progress(options.progress, stages.size());
   const long step_limit = options.max_steps > 0 ? options.max_steps : cfg.max_steps;
-  double v = 0.0, peak = 0.0, trough = 0.0;
+  double peak = 0.0, trough = 0.0;
   std::vector<double> good_x, good_y, good_t;  // last state that passed the stability check
   std::vector<double> good_gx, good_gy;        // and its gridpoints
   std::vector<bool> stalled(stages.size(), false);
@@ -429,6 +429,10 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
           break;
         }
         const double ts = solver.time() - t0;
+        // Adaptive speed: after the ramp, every interval_steps, from the last step's forces.
+        if (st.adaptive.enabled && ts >= st.ramp_time &&
+            solver.steps() % st.adaptive.interval_steps == 0)
+          control.adapt(solver.unbalanced_force_ratio());
         v = control.platen_velocity(
             ts, state.axial_stress,
             solver.contact_stiffness_on(static_cast<std::size_t>(boundary.top_platen())),

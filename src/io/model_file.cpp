@@ -280,6 +280,28 @@ loading::CyclicBlock read_cycles(TomlSection& sec, const std::string& name) {
   return b;
 }
 
+// A velocity stage's adaptive_velocity table; v0 is the stage's platen_velocity (starting speed).
+loading::AdaptiveVelocity read_adaptive(TomlSection sec, double v0) {
+  loading::AdaptiveVelocity a;
+  a.enabled = true;
+  a.target_ratio = sec.positive("target_ratio", laws::required);
+  a.min_velocity = sec.positive("min_velocity", laws::required);
+  a.max_velocity = sec.positive("max_velocity", laws::required);
+  if (a.max_velocity < a.min_velocity)
+    sec.fail("max_velocity", fmt::format("must be >= min_velocity ({} m/s)", a.min_velocity));
+  if (v0 < a.min_velocity || v0 > a.max_velocity)
+    sec.fail("min_velocity",
+             fmt::format("the stage's platen_velocity ({} m/s, the starting speed) must lie "
+                         "between min_velocity and max_velocity",
+                         v0));
+  a.interval_steps = sec.integer("interval_steps", 50, 1);
+  a.max_change = sec.number("max_change", 1.05);
+  if (!(a.max_change > 1))
+    sec.fail("max_change", fmt::format("must be > 1 (got {})", a.max_change));
+  sec.finish();
+  return a;
+}
+
 // One [[stage]] table: a single stage, or a cyclic block expanded into its stages.
 void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>& stages) {
   loading::Stage st;
@@ -296,6 +318,8 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
   if (control == "platen_velocity") {
     st.control = loading::Control::platen_velocity;
     st.platen_velocity = sec.number("platen_velocity", laws::required);
+    if (sec.has("adaptive_velocity"))
+      st.adaptive = read_adaptive(sec.sub("adaptive_velocity"), st.platen_velocity);
   } else if (control == "axial_stress") {
     st.control = loading::Control::axial_stress;
     st.target_stress = sec.non_negative("target_stress", laws::required);

@@ -6,7 +6,7 @@
 namespace vorodec::loading {
 
 StageControl::StageControl(const Stage& stage, double v_previous, double stress0, double strain0)
-    : st_(stage), v0_(v_previous), stress0_(stress0), strain0_(strain0) {
+    : st_(stage), v0_(v_previous), v_(stage.platen_velocity), stress0_(stress0), strain0_(strain0) {
   if (!std::isnan(st_.end.axial_stress)) rising_ = st_.end.axial_stress > stress0;
 }
 
@@ -22,8 +22,7 @@ double StageControl::target(double ts) const {
 double StageControl::platen_velocity(double ts, double stress, double k, double dt,
                                      double width) const {
   if (st_.control == Control::platen_velocity)
-    return ts < st_.ramp_time ? v0_ + (st_.platen_velocity - v0_) * ts / st_.ramp_time
-                              : st_.platen_velocity;
+    return ts < st_.ramp_time ? v0_ + (v_ - v0_) * ts / st_.ramp_time : v_;
   // Servo on the top platen (PFC wall servo): closes 80 % of the force error in one step.
   const double df = (target(ts) - stress) * width;
   const double v = k > 0 ? 0.8 * df / (k * dt) : st_.platen_velocity;
@@ -34,6 +33,15 @@ double StageControl::platen_velocity(double ts, double stress, double k, double 
     return st_.stress_rate < 0 ? std::clamp(v, -cap, 0.0) : std::clamp(v, 0.0, cap);
   }
   return std::clamp(v, -cap, cap);
+}
+
+void StageControl::adapt(double ratio) {
+  const AdaptiveVelocity& a = st_.adaptive;
+  // The square root halves the log-distance to the target per update: the ratio grows roughly
+  // in proportion to the speed, so a full step would overshoot on its noise. A NaN ratio slows.
+  const double f = ratio > 0 ? std::sqrt(a.target_ratio / ratio) : ratio == 0 ? a.max_change : 0.0;
+  v_ = std::clamp(v_ * std::clamp(f, 1.0 / a.max_change, a.max_change), a.min_velocity,
+                  a.max_velocity);
 }
 
 StageOutcome StageControl::judge(const StageSample& s) {

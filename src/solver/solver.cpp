@@ -304,6 +304,31 @@ double Solver::contact_strain_energy() const {
   return e;
 }
 
+double Solver::unbalanced_force_ratio() const {
+  const auto& bl = model_.blocks;
+  const Point g = settings_.gravity;
+  double unbalanced = 0.0;
+  std::size_t bodies = 0;
+  for (std::size_t b = 0; b < bl.size() && b < cfx_.size(); ++b) {
+    if (bl.prescribed[b] || bl.deformable[b]) continue;
+    unbalanced += std::hypot(cfx_[b] + bl.fx[b] + bl.gravity_mass[b] * g.x,
+                             cfy_[b] + bl.fy[b] + bl.gravity_mass[b] * g.y);
+    ++bodies;
+  }
+  const auto& z = model_.zoning;
+  for (std::size_t i = 0; i < z.gridpoints() && i < zfx_.size(); ++i) {
+    if (z.prescribed[i]) continue;
+    unbalanced += std::hypot(zfx_[i] + z.cfx[i] + z.fx[i] + z.gravity_mass[i] * g.x,
+                             zfy_[i] + z.cfy[i] + z.fy[i] + z.gravity_mass[i] * g.y);
+    ++bodies;
+  }
+  double contact = 0.0;
+  for (const auto& c : model_.contacts) contact += std::hypot(c.fn, c.fs);
+  if (bodies == 0 || unbalanced == 0.0) return 0.0;
+  if (contact == 0.0) return std::numeric_limits<double>::infinity();
+  return (unbalanced / double(bodies)) / (contact / double(model_.contacts.size()));
+}
+
 double Solver::contact_stiffness_on(std::size_t b) const {
   double k = 0.0;
   for (std::uint32_t g = gather_begin_[b]; g < gather_begin_[b + 1]; ++g) {

@@ -23,6 +23,10 @@ class StageControl {
   double platen_velocity(double time_in_stage, double axial_stress, double platen_stiffness,
                          double dt, double width) const;
   StageOutcome judge(const StageSample& s);
+  // Adaptive velocity stages: one control update from the current unbalanced-force ratio.
+  void adapt(double unbalanced_force_ratio);
+  // m/s, the stage's speed after the ramp (the adaptive controller's current speed).
+  double stage_velocity() const { return v_; }
   // 0..1, how far the stage has come (progress bar).
   double fraction() const { return fraction_; }
   // Servo target of a stress-controlled stage at this time (Pa).
@@ -30,7 +34,7 @@ class StageControl {
 
  private:
   const Stage& st_;
-  double v0_, stress0_, strain0_;
+  double v0_, v_, stress0_, strain0_;
   double row_peak_ = 0, fraction_ = 0;
   long rows_since_peak_ = 0, held_ = 0;
   bool rising_ = true;  // towards end.axial_stress from below

@@ -62,6 +62,10 @@ class Solver {
   const std::vector<std::unique_ptr<laws::LawGroup>>& laws() const { return laws_; }
   // Sum of contact forces on block b in the last step (reaction of a platen), N per m.
   model::Point contact_force(std::size_t b) const { return {cfx_[b], cfy_[b]}; }
+  // Unbalanced-force ratio of the last step: the mean over free bodies (specimen blocks and
+  // gridpoints) of |unbalanced force| (contact + applied + gravity, before damping) over the mean
+  // over contacts of |(fn, fs)|. Serial and O(blocks + contacts): call it every N steps only.
+  double unbalanced_force_ratio() const;
   // N/m, summed spring stiffness of the contacts touching block b (servo gain).
   double contact_stiffness_on(std::size_t b) const;
   // Throws InstabilityError if the state is not finite or contacts overlap by more than d/2.
