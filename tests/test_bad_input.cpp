@@ -174,3 +174,38 @@ TEST(BadInput, IncompressiblePoissonRatioIsRejected) {
                        "density = 2600\ndeformable = true\nzone_size = 0.002\nE = 40e9\nnu = 0.5"),
                "blocks.nu", 11, "must be > -1 and < 0.5"));
 }
+
+TEST(BadInput, AdaptiveVelocityWithMaximumBelowMinimumIsRejected) {
+  EXPECT_TRUE(rejected("adaptive_range",
+                       replace(good_model, "end_axial_strain = 0.001",
+                               "end_axial_strain = 0.001\nadaptive_velocity = { target_ratio = "
+                               "1e-3, min_velocity = 0.01, max_velocity = 0.005 }"),
+                       "stage[0].adaptive_velocity.max_velocity", 17, "must be >= min_velocity"));
+}
+
+TEST(BadInput, AdaptiveVelocityStartingOutsideItsRangeIsRejected) {
+  EXPECT_TRUE(rejected("adaptive_start",
+                       replace(good_model, "end_axial_strain = 0.001",
+                               "end_axial_strain = 0.001\nadaptive_velocity = { target_ratio = "
+                               "1e-3, min_velocity = 0.001, max_velocity = 0.01 }"),
+                       "stage[0].adaptive_velocity.min_velocity", 17,
+                       "platen_velocity (0.05 m/s, the starting speed) must lie between"));
+}
+
+TEST(BadInput, AdaptiveVelocityMisspelledOrMissingKeyIsNamed) {
+  const std::string table =
+      "end_axial_strain = 0.001\nadaptive_velocity = { target_ratio = 1e-3, "
+      "min_velocity = 0.01, max_velocity = 0.1, max_chnage = 2 }";
+  EXPECT_TRUE(rejected("adaptive_typo", replace(good_model, "end_axial_strain = 0.001", table),
+                       "stage[0].adaptive_velocity.max_chnage", 17, "did you mean 'max_change'"));
+  EXPECT_TRUE(rejected("adaptive_missing",
+                       replace(good_model, "end_axial_strain = 0.001",
+                               "end_axial_strain = 0.001\nadaptive_velocity = { min_velocity = "
+                               "0.01, max_velocity = 0.1 }"),
+                       "stage[0].adaptive_velocity.target_ratio", 17, "required key is missing"));
+  EXPECT_TRUE(rejected("adaptive_change",
+                       replace(good_model, "end_axial_strain = 0.001",
+                               "end_axial_strain = 0.001\nadaptive_velocity = { target_ratio = "
+                               "1e-3, min_velocity = 0.01, max_velocity = 0.1, max_change = 1 }"),
+                       "stage[0].adaptive_velocity.max_change", 17, "must be > 1"));
+}

@@ -432,7 +432,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
         // Adaptive speed: after the ramp, every interval_steps, from the last step's forces.
         if (st.adaptive.enabled && ts >= st.ramp_time &&
             solver.steps() % st.adaptive.interval_steps == 0)
-          control.adapt(solver.unbalanced_force_ratio());
+          control.adapt(solver.unbalanced_force_ratio(), ts, solver.dt());
         v = control.platen_velocity(
             ts, state.axial_stress,
             solver.contact_stiffness_on(static_cast<std::size_t>(boundary.top_platen())),

@@ -294,8 +294,8 @@ loading::AdaptiveVelocity read_adaptive(TomlSection sec, double v0) {
              fmt::format("the stage's platen_velocity ({} m/s, the starting speed) must lie "
                          "between min_velocity and max_velocity",
                          v0));
-  a.interval_steps = sec.integer("interval_steps", 50, 1);
-  a.max_change = sec.number("max_change", 1.05);
+  a.interval_steps = sec.integer("interval_steps", 500, 1);
+  a.max_change = sec.number("max_change", 1.25);
   if (!(a.max_change > 1))
     sec.fail("max_change", fmt::format("must be > 1 (got {})", a.max_change));
   sec.finish();

@@ -6,7 +6,12 @@
 namespace vorodec::loading {
 
 StageControl::StageControl(const Stage& stage, double v_previous, double stress0, double strain0)
-    : st_(stage), v0_(v_previous), v_(stage.platen_velocity), stress0_(stress0), strain0_(strain0) {
+    : st_(stage),
+      v0_(v_previous),
+      v_(stage.platen_velocity),
+      stress0_(stress0),
+      strain0_(strain0),
+      v_from_(stage.platen_velocity) {
   if (!std::isnan(st_.end.axial_stress)) rising_ = st_.end.axial_stress > stress0;
 }
 
@@ -21,8 +26,13 @@ double StageControl::target(double ts) const {
 
 double StageControl::platen_velocity(double ts, double stress, double k, double dt,
                                      double width) const {
-  if (st_.control == Control::platen_velocity)
-    return ts < st_.ramp_time ? v0_ + (v_ - v0_) * ts / st_.ramp_time : v_;
+  if (st_.control == Control::platen_velocity) {
+    // An adaptive change is spread over its interval: a jump would jolt the specimen, and the
+    // controller would read its own jolt as unbalance.
+    const double u = t_span_ > 0 ? std::clamp((ts - t_adapt_) / t_span_, 0.0, 1.0) : 1.0;
+    const double v = v_from_ + (v_ - v_from_) * u;
+    return ts < st_.ramp_time ? v0_ + (v - v0_) * ts / st_.ramp_time : v;
+  }
   // Servo on the top platen (PFC wall servo): closes 80 % of the force error in one step.
   const double df = (target(ts) - stress) * width;
   const double v = k > 0 ? 0.8 * df / (k * dt) : st_.platen_velocity;
@@ -35,8 +45,11 @@ double StageControl::platen_velocity(double ts, double stress, double k, double 
   return std::clamp(v, -cap, cap);
 }
 
-void StageControl::adapt(double ratio) {
+void StageControl::adapt(double ratio, double ts, double dt) {
   const AdaptiveVelocity& a = st_.adaptive;
+  v_from_ = platen_velocity(ts, 0, 0, dt, 0);
+  t_adapt_ = ts;
+  t_span_ = static_cast<double>(a.interval_steps) * dt;
   // The square root halves the log-distance to the target per update: the ratio grows roughly
   // in proportion to the speed, so a full step would overshoot on its noise. A NaN ratio slows.
   const double f = ratio > 0 ? std::sqrt(a.target_ratio / ratio) : ratio == 0 ? a.max_change : 0.0;

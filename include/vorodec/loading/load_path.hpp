@@ -29,8 +29,8 @@ struct AdaptiveVelocity {
   double target_ratio = 0.0;  // -, the ratio the controller steers to
   double min_velocity = 0.0;  // m/s
   double max_velocity = 0.0;  // m/s
-  long interval_steps = 50;   // steps between control updates
-  double max_change = 1.05;   // -, largest factor of one update
+  long interval_steps = 500;  // steps between control updates (>= the fundamental period)
+  double max_change = 1.25;   // -, largest factor of one update
 };
 
 // Which branch of a loading cycle a stage is (cycle measures pair them up).

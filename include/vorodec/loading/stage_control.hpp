@@ -23,9 +23,10 @@ class StageControl {
   double platen_velocity(double time_in_stage, double axial_stress, double platen_stiffness,
                          double dt, double width) const;
   StageOutcome judge(const StageSample& s);
-  // Adaptive velocity stages: one control update from the current unbalanced-force ratio.
-  void adapt(double unbalanced_force_ratio);
-  // m/s, the stage's speed after the ramp (the adaptive controller's current speed).
+  // Adaptive velocity stages: one control update from the current unbalanced-force ratio. The
+  // speed then moves linearly to its new value over the next interval_steps steps of length dt.
+  void adapt(double unbalanced_force_ratio, double time_in_stage, double dt);
+  // m/s, the adaptive controller's current goal (the stage's speed otherwise).
   double stage_velocity() const { return v_; }
   // 0..1, how far the stage has come (progress bar).
   double fraction() const { return fraction_; }
@@ -35,6 +36,7 @@ class StageControl {
  private:
   const Stage& st_;
   double v0_, v_, stress0_, strain0_;
+  double v_from_, t_adapt_ = 0, t_span_ = 0;  // the adaptive speed's move from v_from_ to v_
   double row_peak_ = 0, fraction_ = 0;
   long rows_since_peak_ = 0, held_ = 0;
   bool rising_ = true;  // towards end.axial_stress from below
