@@ -113,6 +113,21 @@ std::vector<Ladder> model_ladders(const std::string& source_dir, const std::stri
 // Young's modulus against the zone size, relative to the finest zoning. About a minute.
 Ladder deformable_ladder(const std::string& source_dir, const std::string& binary);
 
+// Quasi-static speed-ups against a converged reference (issue 7): the default model at fixed
+// platen speeds and with adaptive platen speeds (stage key adaptive_velocity), one thread each.
+struct SpeedRun {
+  std::string setting;                // what the run changes in models/ucs_marble.toml
+  bool is_reference = false;          // the platen-speed ladder's finest run (1.25e-3 m/s)
+  bool is_default = false;            // the model file as it is (5e-3 m/s)
+  double ucs = 0, youngs = 0;         // Pa
+  double ucs_error = 0, e_error = 0;  // relative to the reference run
+  double seconds = 0;                 // wall time of the whole run (build included)
+  long steps = 0;
+};
+// About 8 minutes on one core: the reference alone takes 3.
+std::vector<SpeedRun> quasi_static_speed_runs(const std::string& source_dir,
+                                              const std::string& binary);
+
 struct NamedCase {
   std::string id;
   std::function<CaseResult()> run;

@@ -1,0 +1,77 @@
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cases.hpp"
+
+namespace vorodec::verification {
+
+namespace {
+
+double json_number(const std::string& text, const std::string& key) {
+  const std::string tag = "\"" + key + "\": ";
+  const auto pos = text.find(tag);
+  return pos == std::string::npos ? std::nan("")
+                                  : std::strtod(text.c_str() + pos + tag.size(), nullptr);
+}
+
+}  // namespace
+
+std::vector<SpeedRun> quasi_static_speed_runs(const std::string& source_dir,
+                                              const std::string& binary) {
+  namespace fs = std::filesystem;
+  const fs::path model = fs::path(source_dir) / "models/ucs_marble.toml";
+  const fs::path dir = fs::temp_directory_path() / "vorodec_verification/speeds";
+  struct Plan {
+    std::string name, setting, set;
+  };
+  const auto adaptive = [](double ratio) {
+    return Plan{
+        fmt::format("adaptive_{:g}", ratio),
+        fmt::format("adaptive, target ratio {:g}, 1.25e-3 ... 2e-2 m/s (start 5e-3 m/s)", ratio),
+        fmt::format("--set 'stage[0].adaptive_velocity={{target_ratio={:g},"
+                    "min_velocity=1.25e-3,max_velocity=2e-2}}'",
+                    ratio)};
+  };
+  const auto fixed = [](double v) {
+    return Plan{fmt::format("fixed_{:g}", v), fmt::format("fixed {:g} m/s", v),
+                fmt::format("--set stage[0].platen_velocity={:g}", v)};
+  };
+  // The reference first: every error is relative to it.
+  const std::vector<Plan> plans{fixed(1.25e-3), fixed(1e-2),    fixed(5e-3),   fixed(2.5e-3),
+                                adaptive(1e-3), adaptive(5e-4), adaptive(2e-4)};
+  std::vector<SpeedRun> runs;
+  for (const Plan& p : plans) {
+    const fs::path out = dir / p.name;
+    fs::create_directories(out);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string cmd =
+        fmt::format("{} run {} --no-vtk --threads 1 {} --out {} > {}/log.txt 2>&1", binary,
+                    model.string(), p.set, out.string(), out.string());
+    SpeedRun r;
+    r.setting = p.setting;
+    r.is_reference = runs.empty();
+    r.is_default = p.name == "fixed_0.005";
+    r.ucs = r.youngs = std::nan("");
+    if (std::system(cmd.c_str()) == 0) {
+      std::ifstream in(out / "summary.json");
+      const std::string text{std::istreambuf_iterator<char>(in), {}};
+      r.ucs = json_number(text, "peak_stress_Pa");
+      r.youngs = json_number(text, "youngs_modulus_Pa");
+      r.steps = static_cast<long>(json_number(text, "steps"));
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const SpeedRun& ref = runs.empty() ? r : runs.front();
+    r.ucs_error = (r.ucs - ref.ucs) / ref.ucs;
+    r.e_error = (r.youngs - ref.youngs) / ref.youngs;
+    runs.push_back(r);
+  }
+  return runs;
+}
+
+}  // namespace vorodec::verification
