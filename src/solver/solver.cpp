@@ -57,9 +57,7 @@ void Solver::detect(bool bond_new) {
   for (std::size_t l = 0; l < laws_.size(); ++l)
     deformable_begin_[l] = law_begin_[l + 1] - deformable[l];
   forces_.resize(nc);
-  cfx_.resize(nb, 0.0);
-  cfy_.resize(nb, 0.0);
-  cm_.resize(nb, 0.0);
+  sums_.resize(nb);
   gather_begin_.assign(nb + 1, 0);
   for (const auto& c : model_.contacts) {
     ++gather_begin_[static_cast<std::size_t>(c.a) + 1];
@@ -173,16 +171,12 @@ void Solver::step() {
       detect(false);
   }
   if (chunks_ != omp_get_max_threads()) partition();  // the thread count changed
-  std::fill(cfx_.begin(), cfx_.end(), 0.0);
-  std::fill(cfy_.begin(), cfy_.end(), 0.0);
-  std::fill(cm_.begin(), cm_.end(), 0.0);
+  std::fill(sums_.begin(), sums_.end(), model::BlockForceSum{});
   laws::StepContext ctx{&bl,
                         model_.contacts.data(),
                         forces_.data(),
                         shared_sides_.data(),
-                        cfx_.data(),
-                        cfy_.data(),
-                        cm_.data(),
+                        sums_.data(),
                         chunks_,
                         &cracks_per_chunk_,
                         dt_,
@@ -227,9 +221,7 @@ void Solver::gather_shared_forces() {
       fy += s * f.fy;
       m += s * (on_b ? f.mb : f.ma);
     }
-    cfx_[b] = fx;
-    cfy_[b] = fy;
-    cm_[b] = m;
+    sums_[b] = {fx, fy, m};
   }
 }
 
@@ -248,7 +240,7 @@ void Solver::integrate() {
   const double* gravity_mass = bl.gravity_mass.data();
   const std::uint8_t* prescribed = bl.prescribed.data();
   const std::uint8_t* deformable = bl.deformable.data();
-  const double *cfx = cfx_.data(), *cfy = cfy_.data(), *cm = cm_.data();
+  const model::BlockForceSum* sums = sums_.data();
 #pragma omp parallel for schedule(static) reduction(+ : w_boundary, w_body, w_damp)
   for (std::int64_t bi = 0; bi < nb; ++bi) {
     const auto b = static_cast<std::size_t>(bi);
@@ -256,11 +248,11 @@ void Solver::integrate() {
     double u = vx[b], v = vy[b], w = omega[b];
     if (prescribed[b]) {
       // Work of the platen on the specimen: minus the contact force the specimen exerts on it.
-      w_boundary -= (cfx[b] * u + cfy[b] * v + cm[b] * w) * dt;
+      w_boundary -= (sums[b].fx * u + sums[b].fy * v + sums[b].m * w) * dt;
     } else {
-      const double fx = cfx[b] + fx_applied[b] + gravity_mass[b] * g.x;
-      const double fy = cfy[b] + fy_applied[b] + gravity_mass[b] * g.y;
-      const double mz = cm[b] + m_applied[b];
+      const double fx = sums[b].fx + fx_applied[b] + gravity_mass[b] * g.x;
+      const double fy = sums[b].fy + fy_applied[b] + gravity_mass[b] * g.y;
+      const double mz = sums[b].m + m_applied[b];
       const double dfx = -alpha * std::abs(fx) * sign(u);
       const double dfy = -alpha * std::abs(fy) * sign(v);
       const double dmz = -alpha * std::abs(mz) * sign(w);
@@ -309,10 +301,10 @@ double Solver::unbalanced_force_ratio() const {
   const Point g = settings_.gravity;
   double unbalanced = 0.0;
   std::size_t bodies = 0;
-  for (std::size_t b = 0; b < bl.size() && b < cfx_.size(); ++b) {
+  for (std::size_t b = 0; b < bl.size() && b < sums_.size(); ++b) {
     if (bl.prescribed[b] || bl.deformable[b]) continue;
-    unbalanced += std::hypot(cfx_[b] + bl.fx[b] + bl.gravity_mass[b] * g.x,
-                             cfy_[b] + bl.fy[b] + bl.gravity_mass[b] * g.y);
+    unbalanced += std::hypot(sums_[b].fx + bl.fx[b] + bl.gravity_mass[b] * g.x,
+                             sums_[b].fy + bl.fy[b] + bl.gravity_mass[b] * g.y);
     ++bodies;
   }
   const auto& z = model_.zoning;

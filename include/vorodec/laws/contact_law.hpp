@@ -72,7 +72,7 @@ struct StepContext {
   model::Contact* contacts;          // whole contact array
   model::ContactForce* forces;       // whole force array (written where a block is shared)
   const std::uint8_t* shared_sides;  // per contact: a_shared | b_shared
-  double *fx, *fy, *moment;          // per block contact sums, zero before the step
+  model::BlockForceSum* sums;        // per block contact sums, zero before the step
   int chunks;                        // parts per law group; cracks_per_chunk has this many lists
   std::vector<std::vector<CrackEvent>>* cracks_per_chunk;
   double dt;    // s

@@ -58,7 +58,7 @@ class LawGroupOf final : public LawGroup {
     model::Contact* contacts = ctx.contacts;
     model::ContactForce* forces = ctx.forces;
     const std::uint8_t* shared_sides = ctx.shared_sides;
-    double *sum_fx = ctx.fx, *sum_fy = ctx.fy, *sum_m = ctx.moment;
+    model::BlockForceSum* sums = ctx.sums;
     const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
     // One part per thread; a thread the runtime did not grant (or a group too small to be worth
@@ -94,14 +94,14 @@ class LawGroupOf final : public LawGroup {
         const std::uint8_t shared = shared_sides[i];
         if (shared != 0) forces[i] = {fx, fy, ma, mb};
         if (!(shared & a_shared)) {
-          sum_fx[a] += fx;
-          sum_fy[a] += fy;
-          sum_m[a] += ma;
+          sums[a].fx += fx;
+          sums[a].fy += fy;
+          sums[a].m += ma;
         }
         if (!(shared & b_shared)) {
-          sum_fx[b] -= fx;
-          sum_fy[b] -= fy;
-          sum_m[b] -= mb;
+          sums[b].fx -= fx;
+          sums[b].fy -= fy;
+          sums[b].m -= mb;
         }
       }
     }
@@ -148,9 +148,9 @@ class LawGroupOf final : public LawGroup {
           rec.fy = force.y;
           (on_b ? rec.mb : rec.ma) = m;
         } else {
-          ctx.fx[blk] += sign * force.x;
-          ctx.fy[blk] += sign * force.y;
-          ctx.moment[blk] += sign * m;
+          ctx.sums[blk].fx += sign * force.x;
+          ctx.sums[blk].fy += sign * force.y;
+          ctx.sums[blk].m += sign * m;
         }
       };
       apply(a, pa, 1.0, false);

@@ -100,6 +100,12 @@ struct ContactForce {
   double ma = 0, mb = 0;  // N m per m, moment of (fx, fy) about a's and about b's centroid
 };
 
+// Sum of the contact forces on one block and their moment about its centroid; one record so that
+// a contact adds into one cache line per block, not three.
+struct BlockForceSum {
+  double fx = 0, fy = 0, m = 0;
+};
+
 struct Model {
   Blocks blocks;
   std::vector<Contact> contacts;

@@ -61,7 +61,7 @@ class Solver {
   std::size_t detections() const { return detections_; }
   const std::vector<std::unique_ptr<laws::LawGroup>>& laws() const { return laws_; }
   // Sum of contact forces on block b in the last step (reaction of a platen), N per m.
-  model::Point contact_force(std::size_t b) const { return {cfx_[b], cfy_[b]}; }
+  model::Point contact_force(std::size_t b) const { return {sums_[b].fx, sums_[b].fy}; }
   // Unbalanced-force ratio of the last step: the mean over free bodies (specimen blocks and
   // gridpoints) of |unbalanced force| (contact + applied + gravity, before damping) over the mean
   // over contacts of |(fn, fs)|. Serial and O(blocks + contacts): call it every N steps only.
@@ -89,7 +89,7 @@ class Solver {
   SolverSettings settings_;
   std::vector<model::ContactForce> forces_;
   std::vector<std::uint32_t> gather_begin_, gather_;  // block -> contacts (top bit: block is b)
-  std::vector<double> cfx_, cfy_, cm_;                // contact force sums per block
+  std::vector<model::BlockForceSum> sums_;            // contact force sums per block
   // Thread parts of the contact loop (laws::StepContext): per contact which of its blocks are
   // shared between parts, and the shared blocks, whose sums gather_shared_forces() takes.
   int chunks_ = 0;
