@@ -26,8 +26,6 @@ class StageControl {
   // Adaptive velocity stages: one control update from the current unbalanced-force ratio. The
   // speed then moves linearly to its new value over the next interval_steps steps of length dt.
   void adapt(double unbalanced_force_ratio, double time_in_stage, double dt);
-  // m/s, the adaptive controller's current goal (the stage's speed otherwise).
-  double stage_velocity() const { return v_; }
   // 0..1, how far the stage has come (progress bar).
   double fraction() const { return fraction_; }
   // Servo target of a stress-controlled stage at this time (Pa).
