@@ -239,12 +239,13 @@ void Solver::integrate() {
   const double *mass = bl.mass.data(), *inertia = bl.inertia.data();
   const double* gravity_mass = bl.gravity_mass.data();
   const std::uint8_t* prescribed = bl.prescribed.data();
-  const std::uint8_t* deformable = bl.deformable.data();
+  // Null in rigid-only models, so that their loop tests one register, not a byte per block.
+  const std::uint8_t* deformable = model_.zoning.empty() ? nullptr : bl.deformable.data();
   const model::BlockForceSum* sums = sums_.data();
 #pragma omp parallel for schedule(static) reduction(+ : w_boundary, w_body, w_damp)
   for (std::int64_t bi = 0; bi < nb; ++bi) {
     const auto b = static_cast<std::size_t>(bi);
-    if (deformable[b]) continue;  // moves with its gridpoints (integrate_gridpoints)
+    if (deformable && deformable[b]) continue;  // moves with its gridpoints (integrate_gridpoints)
     double u = vx[b], v = vy[b], w = omega[b];
     if (prescribed[b]) {
       // Work of the platen on the specimen: minus the contact force the specimen exerts on it.
