@@ -8,19 +8,9 @@
 #include <string>
 
 #include "cases.hpp"
+#include "model_runs.hpp"
 
 namespace vorodec::verification {
-
-namespace {
-
-double json_number(const std::string& text, const std::string& key) {
-  const std::string tag = "\"" + key + "\": ";
-  const auto pos = text.find(tag);
-  return pos == std::string::npos ? std::nan("")
-                                  : std::strtod(text.c_str() + pos + tag.size(), nullptr);
-}
-
-}  // namespace
 
 std::vector<SpeedRun> quasi_static_speed_runs(const std::string& source_dir,
                                               const std::string& binary) {

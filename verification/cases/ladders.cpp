@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cases.hpp"
+#include "model_runs.hpp"
 
 namespace vorodec::verification {
 
@@ -28,16 +29,9 @@ double Ladder::order() const {
 
 namespace {
 
-struct ModelRun {
+struct LadderRun {
   double ucs = std::nan(""), youngs = std::nan(""), seconds = 0;
 };
-
-double json_number(const std::string& text, const std::string& key) {
-  const std::string tag = "\"" + key + "\": ";
-  const auto pos = text.find(tag);
-  return pos == std::string::npos ? std::nan("")
-                                  : std::strtod(text.c_str() + pos + tag.size(), nullptr);
-}
 
 }  // namespace
 
@@ -46,7 +40,7 @@ std::vector<Ladder> model_ladders(const std::string& source_dir, const std::stri
   const fs::path model = fs::path(source_dir) / "models/ucs_marble.toml";
   const fs::path dir = fs::temp_directory_path() / "vorodec_verification/ladders";
   constexpr double v0 = 5e-3, dt0 = 5e-7;              // the model file's own settings
-  std::map<std::pair<double, double>, ModelRun> runs;  // the default run is shared
+  std::map<std::pair<double, double>, LadderRun> runs;  // the default run is shared
   const auto run = [&](double velocity, double dt) {
     auto [it, fresh] = runs.try_emplace({velocity, dt});
     if (!fresh) return it->second;
@@ -70,7 +64,7 @@ std::vector<Ladder> model_ladders(const std::string& source_dir, const std::stri
   std::vector<Ladder> out;
   const auto ladder = [&](const std::string& what, const std::string& parameter,
                           const std::vector<double>& values, bool velocity) {
-    std::vector<ModelRun> r;
+    std::vector<LadderRun> r;
     for (double p : values) r.push_back(velocity ? run(p, dt0) : run(v0, p));
     const std::string finest =
         fmt::format("finest run ({} = {:g}), taken as converged", what, values.back());
@@ -106,7 +100,7 @@ Ladder deformable_ladder(const std::string& source_dir, const std::string& binar
            "finest run (zone size 2.5e-4 m), taken as converged",
            0,
            {}};
-  std::vector<ModelRun> runs;
+  std::vector<LadderRun> runs;
   for (double h : sizes) {
     // The scaled gridpoint masses grow with the number of gridpoints unless the step shrinks
     // with the zones: keep the scaled inertia per area fixed.
@@ -119,7 +113,7 @@ Ladder deformable_ladder(const std::string& source_dir, const std::string& binar
         "--set joints.tension=1e10 --set joints.cohesion=1e10 "
         "--set stage[0].end_axial_strain=1e-3 --out {} > {}/log.txt 2>&1",
         binary, model.string(), h, dt, out.string(), out.string());
-    ModelRun r;
+    LadderRun r;
     if (std::system(cmd.c_str()) == 0) {
       std::ifstream in(out / "summary.json");
       r.youngs = json_number({std::istreambuf_iterator<char>(in), {}}, "youngs_modulus_Pa");
