@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "case_assertions.hpp"
 #include "cases.hpp"
 #include "run_support.hpp"
 #include "scenes.hpp"
@@ -21,13 +22,6 @@ using namespace vorodec::verification;
 namespace fs = std::filesystem;
 
 namespace {
-::testing::AssertionResult passes(const CaseResult& r) {
-  if (r.pass()) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure()
-         << r.id << " " << r.name << ": expected " << r.expected << ", measured " << r.measured
-         << ", error " << r.error << " > tolerance " << r.tolerance << " (" << r.reference << ")";
-}
-
 const model::ElasticMaterial rock{30e9, 0.25};
 }  // namespace
 

@@ -1,18 +1,10 @@
 // The analytic verification cases (A1-A8) as unit tests: each must meet its tolerance.
 #include <gtest/gtest.h>
 
+#include "case_assertions.hpp"
 #include "cases.hpp"
 
 using namespace vorodec::verification;
-
-namespace {
-::testing::AssertionResult passes(const CaseResult& r) {
-  if (r.pass()) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure()
-         << r.id << " " << r.name << ": expected " << r.expected << ", measured " << r.measured
-         << ", error " << r.error << " > tolerance " << r.tolerance << " (" << r.reference << ")";
-}
-}  // namespace
 
 TEST(Verification, A1PolygonMassPropertiesAreExact) {
   EXPECT_TRUE(passes(a1_mass_properties()));

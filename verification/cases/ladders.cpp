@@ -39,7 +39,7 @@ std::vector<Ladder> model_ladders(const std::string& source_dir, const std::stri
   namespace fs = std::filesystem;
   const fs::path model = fs::path(source_dir) / "models/ucs_marble.toml";
   const fs::path dir = fs::temp_directory_path() / "vorodec_verification/ladders";
-  constexpr double v0 = 5e-3, dt0 = 5e-7;              // the model file's own settings
+  constexpr double v0 = 5e-3, dt0 = 5e-7;               // the model file's own settings
   std::map<std::pair<double, double>, LadderRun> runs;  // the default run is shared
   const auto run = [&](double velocity, double dt) {
     auto [it, fresh] = runs.try_emplace({velocity, dt});

@@ -215,7 +215,8 @@ class LawGroupOf final : public LawGroup {
       breakage += dissipated;
       c.state = r.event == ContactEvent::tensile_failure ? model::ContactState::tensile_failed
                                                          : model::ContactState::shear_failed;
-      cracks.push_back({loop.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
+      cracks.push_back(
+          {loop.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
     } else {
       slip += dissipated;
       if (c.state <= model::ContactState::slipping)
