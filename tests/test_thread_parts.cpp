@@ -1,6 +1,7 @@
 // The contact loop's thread parts (laws::chunk_range): blocks of one part get their force sums in
-// the loop, blocks shared by parts get them gathered afterwards, both in contact order. So the
-// run must be the same bits however many parts the contacts are cut into.
+// the loop, blocks shared by parts get them gathered afterwards, both in contact order. Contact
+// detection cuts the block pairs into runs, one per thread, joined in pair order. So the run must
+// be the same bits, and the same contacts in the same order, however many parts there are.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -16,6 +17,8 @@ namespace {
 
 struct Snapshot {
   std::vector<double> x, y, theta, vx, vy, omega, fn, fs;
+  std::vector<std::uint64_t> id;
+  std::vector<std::uint32_t> corner, edge;
 };
 
 Snapshot run_with_parts(int parts) {
@@ -33,17 +36,22 @@ Snapshot run_with_parts(int parts) {
   for (int i = 0; i < 400; ++i) pm.solver->step();
   omp_set_num_threads(1);
   const model::Blocks& bl = pm.model->blocks;
-  Snapshot s{bl.x, bl.y, bl.theta, bl.vx, bl.vy, bl.omega, {}, {}};
+  Snapshot s{bl.x, bl.y, bl.theta, bl.vx, bl.vy, bl.omega, {}, {}, {}, {}, {}};
   for (const auto& c : pm.model->contacts) {
     s.fn.push_back(c.fn);
     s.fs.push_back(c.fs);
+    s.id.push_back(c.id);
+    s.corner.push_back(c.corner);
+    s.edge.push_back(c.edge);
   }
+  // The run redetected contacts after its initial detection (at most every 200 steps).
+  EXPECT_GE(pm.solver->detections(), 2u);
   return s;
 }
 
 }  // namespace
 
-TEST(ThreadParts, BlocksAndContactForcesAreTheSameBitsForOneThreeAndFourParts) {
+TEST(ThreadParts, BlocksContactsAndTheirForcesAreTheSameForOneThreeAndFourParts) {
   const Snapshot one = run_with_parts(1);
   ASSERT_GE(one.fn.size(), 2048u);
   for (const int parts : {3, 4}) {
@@ -57,5 +65,8 @@ TEST(ThreadParts, BlocksAndContactForcesAreTheSameBitsForOneThreeAndFourParts) {
     EXPECT_EQ(many.omega, one.omega) << parts << " parts";
     EXPECT_EQ(many.fn, one.fn) << parts << " parts";
     EXPECT_EQ(many.fs, one.fs) << parts << " parts";
+    EXPECT_EQ(many.id, one.id) << parts << " parts";
+    EXPECT_EQ(many.corner, one.corner) << parts << " parts";
+    EXPECT_EQ(many.edge, one.edge) << parts << " parts";
   }
 }

@@ -1,5 +1,7 @@
 #include "vorodec/solver/contact_detection.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -212,127 +214,209 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const Blocks& b
   return pairs;
 }
 
+namespace {
+
+using BlockPair = std::pair<std::uint32_t, std::uint32_t>;
+
+BlockPair pair_of(const Contact& c) {
+  return {static_cast<std::uint32_t>(std::min(c.a, c.b)),
+          static_cast<std::uint32_t>(std::max(c.a, c.b))};
+}
+
+// Box of a block's unrounded corners, which holds its rounded outline.
+Box corner_box(const Blocks& bl, std::uint32_t b) {
+  Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+          -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+  for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
+    const Point p = bl.world[c].corner;
+    box = {std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x),
+           std::max(box.y1, p.y)};
+  }
+  return box;
+}
+
+// The contacts of a run of block pairs, in pair order, as the serial sweep would list them.
+struct PairRun {
+  std::vector<Candidate> result;
+  std::vector<std::int64_t> origin;  // old index, or -1: new, its id is given afterwards
+  DetectionStats stats;
+};
+
+// Narrow phase of the pairs [begin, end) of the broad phase's sorted list, merged with the old
+// contacts (sorted by pair) from old_pos on. Pairs are independent, so runs of them can go to
+// different threads and be joined in order.
+struct NarrowPhase {
+  const model::Model& model;
+  const LawTable& table;
+  const std::vector<BlockPair>& pairs;
+  const std::vector<std::size_t>& old_order;
+  double tolerance;
+  bool bond_new;
+
+  PairRun run(std::size_t begin, std::size_t end) const {
+    const Blocks& bl = model.blocks;
+    const double d = model.rounding_length;
+    PairRun out;
+    std::vector<Candidate> pair_list, fresh;
+    std::vector<std::int64_t> pair_origin;
+    std::size_t old_pos = 0;
+    if (begin > 0)
+      old_pos = static_cast<std::size_t>(
+          std::lower_bound(
+              old_order.begin(), old_order.end(), pairs[begin],
+              [&](std::size_t i, const BlockPair& p) { return pair_of(model.contacts[i]) < p; }) -
+          old_order.begin());
+    const auto flush_old_until = [&](const BlockPair& p, bool inclusive) {
+      // Old contacts of pairs that the broad phase no longer reports: keep only intact bonded
+      // ones.
+      while (old_pos < old_order.size()) {
+        const Contact& c = model.contacts[old_order[old_pos]];
+        const BlockPair q = pair_of(c);
+        if (inclusive ? q > p : q >= p) break;
+        if (c.bonded && c.state <= model::ContactState::slipping) {
+          out.result.push_back({c, {}});
+          out.origin.push_back(static_cast<std::int64_t>(old_order[old_pos]));
+          ++out.stats.kept;
+        } else {
+          ++out.stats.deleted;
+        }
+        ++old_pos;
+      }
+    };
+    for (std::size_t p = begin; p < end; ++p) {
+      const auto [pa, pb] = pairs[p];
+      const int law = table.for_blocks(bl, pa, pb);
+      if (law < 0) continue;
+      flush_old_until(pairs[p], false);
+      // Old contacts of this pair.
+      pair_list.clear();
+      pair_origin.clear();
+      while (old_pos < old_order.size() &&
+             pair_of(model.contacts[old_order[old_pos]]) == pairs[p]) {
+        const Contact& c = model.contacts[old_order[old_pos]];
+        pair_list.push_back({c, {}});
+        pair_origin.push_back(static_cast<std::int64_t>(old_order[old_pos]));
+        ++old_pos;
+      }
+      // Narrow phase: every corner of each block against the other block.
+      fresh.clear();
+      for (const auto& [a, b] : {std::pair{pa, pb}, std::pair{pb, pa}}) {
+        const Box box = corner_box(bl, b);
+        for (std::uint32_t k = bl.corner_begin[a]; k < bl.corner_begin[a + 1]; ++k) {
+          bool existing = false;
+          for (const Candidate& old : pair_list)
+            existing = existing ||
+                       (old.contact.a == static_cast<std::int32_t>(a) && old.contact.corner == k);
+          // b's rounded outline lies in its corner box, so a corner farther from the box than
+          // the tolerance plus its radius has a gap beyond the tolerance: skip the search.
+          const Point cA = bl.world[k].centre;
+          const double reach = tolerance + bl.shape[k].radius + 1e-3 * d;
+          if (!existing && (cA.x < box.x0 - reach || cA.x > box.x1 + reach ||
+                            cA.y < box.y0 - reach || cA.y > box.y1 + reach))
+            continue;
+          std::uint32_t edge = 0;
+          const ContactFrame f = nearest_feature(bl, k, b, edge);
+          for (Candidate& old : pair_list) {
+            if (old.contact.a == static_cast<std::int32_t>(a) && old.contact.corner == k) {
+              old.contact.edge = edge;
+              old.point = f.point;
+            }
+          }
+          if (existing || f.gap > tolerance || !faces_arc(bl, a, k, f.n)) continue;
+          Contact c;
+          c.a = static_cast<std::int32_t>(a);
+          c.b = static_cast<std::int32_t>(b);
+          c.corner = k;
+          c.edge = edge;
+          c.gap = f.gap;
+          c.law = static_cast<std::uint16_t>(law);
+          // Bonds join blocks that share an edge (gap zero up to round-off); blocks that only
+          // approach each other at a vertex get an unbonded, frictional contact.
+          c.bonded =
+              bond_new && table.bonds(bl.group[a], bl.group[b]) && std::abs(f.gap) <= 1e-3 * d;
+          fresh.push_back({c, f.point});
+        }
+      }
+      // Keep old contacts that are still close (or bonded and intact); drop the rest.
+      std::vector<Candidate> kept;
+      std::vector<std::int64_t> kept_origin;
+      for (std::size_t i = 0; i < pair_list.size(); ++i) {
+        const Contact& c = pair_list[i].contact;
+        if (c.gap <= tolerance || (c.bonded && c.state <= model::ContactState::slipping)) {
+          kept.push_back(pair_list[i]);
+          kept_origin.push_back(pair_origin[i]);
+          ++out.stats.kept;
+        } else {
+          ++out.stats.deleted;
+        }
+      }
+      // A corner of a and a corner of b meeting at one point give one contact: the lower block's
+      // (fresh is in block order, so the lower block's candidates come first). A corner that has
+      // slid past the other corner and presses deeper than the contact there is a contact of its
+      // own: suppressing it would let it sink in unseen.
+      const std::size_t n_kept = kept.size();
+      for (const Candidate& cand : fresh) {
+        bool duplicate = false;
+        for (const Candidate& k : kept) {
+          const Point r = k.point - cand.point;
+          if (dot(r, r) < d * d && cand.contact.gap >= k.contact.gap - 0.01 * d) duplicate = true;
+        }
+        if (duplicate) continue;
+        kept.push_back(cand);
+        kept_origin.push_back(-1);
+      }
+      // Rigid blocks: at least 2d per contact. Deformable blocks: the gridpoint spacing, which
+      // zoning finer than 2d would otherwise inflate (PHYSICS 7).
+      if (kept.size() > n_kept)
+        assign_lengths(kept, d, bl.deformable[pa] || bl.deformable[pb] ? 0.0 : 2.0 * d);
+      for (std::size_t i = 0; i < kept.size(); ++i) {
+        if (kept_origin[i] < 0) ++out.stats.created;
+        out.result.push_back(kept[i]);
+        out.origin.push_back(kept_origin[i]);
+      }
+    }
+    if (end == pairs.size())
+      flush_old_until(
+          {std::numeric_limits<std::uint32_t>::max(), std::numeric_limits<std::uint32_t>::max()},
+          true);
+    else
+      flush_old_until(pairs[end], false);
+    return out;
+  }
+};
+
+}  // namespace
+
 DetectionStats ContactDetector::detect(model::Model& model,
                                        std::vector<std::unique_ptr<laws::LawGroup>>& laws,
                                        bool bond_new) {
   Blocks& bl = model.blocks;
-  const double d = model.rounding_length;
   model::refresh_world(model);
-  // Existing contacts, indexed by key for lookup; their position in the old array is remembered.
+  // Existing contacts by pair; their position in the old array is remembered.
   const std::vector<std::size_t> old_order = sorted_order(model.contacts, pair_key);
-
-  DetectionStats stats;
-  std::vector<Candidate> result;     // contacts of the new list, with their points
-  std::vector<std::int64_t> origin;  // old index, or -1
-  std::vector<Candidate> pair_list, fresh;
-  std::vector<std::int64_t> pair_origin;
-  std::size_t old_pos = 0;
-  const auto pairs = broad_phase(bl, tolerance_ + 2.0 * d);
-  const auto flush_old_until = [&](std::uint32_t lo, std::uint32_t hi, bool inclusive) {
-    // Old contacts of pairs that the broad phase no longer reports: keep only intact bonded ones.
-    while (old_pos < old_order.size()) {
-      const Contact& c = model.contacts[old_order[old_pos]];
-      const auto plo = static_cast<std::uint32_t>(std::min(c.a, c.b));
-      const auto phi = static_cast<std::uint32_t>(std::max(c.a, c.b));
-      if (plo > lo || (plo == lo && (inclusive ? phi > hi : phi >= hi))) break;
-      if (c.bonded && c.state <= model::ContactState::slipping) {
-        result.push_back({c, {}});
-        origin.push_back(static_cast<std::int64_t>(old_order[old_pos]));
-        ++stats.kept;
-      } else {
-        ++stats.deleted;
-      }
-      ++old_pos;
-    }
-  };
-  for (const auto& [pa, pb] : pairs) {
-    const int law = table_.for_blocks(bl, pa, pb);
-    if (law < 0) continue;
-    flush_old_until(pa, pb, false);
-    // Old contacts of this pair.
-    pair_list.clear();
-    pair_origin.clear();
-    while (old_pos < old_order.size()) {
-      const Contact& c = model.contacts[old_order[old_pos]];
-      if (static_cast<std::uint32_t>(std::min(c.a, c.b)) != pa ||
-          static_cast<std::uint32_t>(std::max(c.a, c.b)) != pb)
-        break;
-      pair_list.push_back({c, {}});
-      pair_origin.push_back(static_cast<std::int64_t>(old_order[old_pos]));
-      ++old_pos;
-    }
-    // Narrow phase: every corner of each block against the other block.
-    fresh.clear();
-    for (const auto& [a, b] : {std::pair{pa, pb}, std::pair{pb, pa}}) {
-      for (std::uint32_t k = bl.corner_begin[a]; k < bl.corner_begin[a + 1]; ++k) {
-        std::uint32_t edge = 0;
-        const ContactFrame f = nearest_feature(bl, k, b, edge);
-        bool existing = false;
-        for (std::size_t i = 0; i < pair_list.size(); ++i) {
-          Contact& c = pair_list[i].contact;
-          if (c.a == static_cast<std::int32_t>(a) && c.corner == k) {
-            existing = true;
-            c.edge = edge;
-            pair_list[i].point = f.point;
-          }
-        }
-        if (existing || f.gap > tolerance_ || !faces_arc(bl, a, k, f.n)) continue;
-        Contact c;
-        c.a = static_cast<std::int32_t>(a);
-        c.b = static_cast<std::int32_t>(b);
-        c.corner = k;
-        c.edge = edge;
-        c.gap = f.gap;
-        c.law = static_cast<std::uint16_t>(law);
-        // Bonds join blocks that share an edge (gap zero up to round-off); blocks that only
-        // approach each other at a vertex get an unbonded, frictional contact.
-        c.bonded =
-            bond_new && table_.bonds(bl.group[a], bl.group[b]) && std::abs(f.gap) <= 1e-3 * d;
-        fresh.push_back({c, f.point});
-      }
-    }
-    // Keep old contacts that are still close (or bonded and intact); drop the rest.
-    std::vector<Candidate> kept;
-    std::vector<std::int64_t> kept_origin;
-    for (std::size_t i = 0; i < pair_list.size(); ++i) {
-      const Contact& c = pair_list[i].contact;
-      if (c.gap <= tolerance_ || (c.bonded && c.state <= model::ContactState::slipping)) {
-        kept.push_back(pair_list[i]);
-        kept_origin.push_back(pair_origin[i]);
-        ++stats.kept;
-      } else {
-        ++stats.deleted;
-      }
-    }
-    // A corner of a and a corner of b meeting at one point give one contact: the lower block's
-    // (fresh is in block order, so the lower block's candidates come first). A corner that has
-    // slid past the other corner and presses deeper than the contact there is a contact of its
-    // own: suppressing it would let it sink in unseen.
-    const std::size_t n_kept = kept.size();
-    for (const Candidate& cand : fresh) {
-      bool duplicate = false;
-      for (const Candidate& k : kept) {
-        const Point r = k.point - cand.point;
-        if (dot(r, r) < d * d && cand.contact.gap >= k.contact.gap - 0.01 * d) duplicate = true;
-      }
-      if (duplicate) continue;
-      kept.push_back(cand);
-      kept_origin.push_back(-1);
-    }
-    // Rigid blocks: at least 2d per contact. Deformable blocks: the gridpoint spacing, which zoning
-    // finer than 2d would otherwise inflate (PHYSICS 7).
-    if (kept.size() > n_kept)
-      assign_lengths(kept, d, bl.deformable[pa] || bl.deformable[pb] ? 0.0 : 2.0 * d);
-    for (std::size_t i = 0; i < kept.size(); ++i) {
-      if (kept_origin[i] < 0) {
-        kept[i].contact.id = next_id_++;
-        ++stats.created;
-      }
-      result.push_back(kept[i]);
-      origin.push_back(kept_origin[i]);
-    }
+  const auto pairs = broad_phase(bl, tolerance_ + 2.0 * model.rounding_length);
+  const NarrowPhase narrow{model, table_, pairs, old_order, tolerance_, bond_new};
+  const int runs = static_cast<int>(std::clamp<std::size_t>(
+      pairs.size() / 256, 1, static_cast<std::size_t>(omp_get_max_threads())));
+  std::vector<PairRun> parts(static_cast<std::size_t>(runs));
+#pragma omp parallel for schedule(static, 1) num_threads(runs) if (runs > 1)
+  for (int t = 0; t < runs; ++t) {
+    const auto [lo, hi] = laws::chunk_range(0, pairs.size(), t, runs);
+    parts[static_cast<std::size_t>(t)] = narrow.run(lo, hi);
   }
-  flush_old_until(std::numeric_limits<std::uint32_t>::max(), 0, true);
+  // Joined in pair order, new contacts numbered in that order: the same for any thread count.
+  DetectionStats stats;
+  std::vector<Candidate> result;
+  std::vector<std::int64_t> origin;
+  for (PairRun& part : parts) {
+    for (std::size_t i = 0; i < part.result.size(); ++i)
+      if (part.origin[i] < 0) part.result[i].contact.id = next_id_++;
+    result.insert(result.end(), part.result.begin(), part.result.end());
+    origin.insert(origin.end(), part.origin.begin(), part.origin.end());
+    stats.created += part.stats.created;
+    stats.deleted += part.stats.deleted;
+    stats.kept += part.stats.kept;
+  }
 
   // Sort by law then corner owner (memory order of the step loop).
   std::vector<Contact> contacts(result.size());

@@ -208,7 +208,6 @@ class LawGroupOf final : public LawGroup {
           work - (Law::strain_energy(props, r.fn, r.fs) - Law::strain_energy(props, fn0, fs0));
     }
     c.gap = f.gap;
-    c.u_s += k.du_s;
     c.fn = r.fn;
     c.fs = r.fs;
     if (r.event == ContactEvent::tensile_failure || r.event == ContactEvent::shear_failure) {

@@ -85,7 +85,6 @@ struct Contact {
   std::uint64_t id = 0;       // stable id: keys the random stream of sampled properties
   double length = 0.0;        // m, joint length this contact represents
   double gap = 0.0;           // m, current gap (negative = overlap)
-  double u_s = 0.0;           // m, accumulated shear displacement
   double fn = 0.0, fs = 0.0;  // N per m thickness, normal force positive in compression
   std::uint16_t law = 0;      // index of the contact law group that owns it
   ContactState state = ContactState::intact;
