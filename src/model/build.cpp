@@ -64,7 +64,8 @@ void add_block(Model& model, std::span<const Point> polygon, double density, Gro
     const double inv = 1.0 / std::sqrt(dot(e, e));
     b.shape.push_back({radii[i], inv, dot(centres[i] - polygon[i], inv * e),
                        dot(centres[j] - polygon[i], inv * e),
-                       first + static_cast<std::uint32_t>(j)});
+                       first + static_cast<std::uint32_t>(j),
+                       first + static_cast<std::uint32_t>((i + n - 1) % n)});
   }
   b.corner_begin.push_back(static_cast<std::uint32_t>(b.corner.size()));
   b.world.resize(b.corner.size());

@@ -20,7 +20,9 @@ struct CornerShape {
   double s0, s1;       // m, where the edge's straight part (between the end arcs' tangent points)
                        // begins and ends along it
   std::uint32_t next;  // index of the next corner of the same block
+  std::uint32_t prev;  // and of the previous one (in the padding: the record stays 40 bytes)
 };
+static_assert(sizeof(CornerShape) == 40);
 
 struct CornerWorld {
   Point corner;  // unrounded corner, world frame
@@ -59,9 +61,7 @@ struct Blocks {
 
   std::size_t size() const { return x.size(); }
   std::uint32_t next_corner(std::uint32_t, std::uint32_t c) const { return shape[c].next; }
-  std::uint32_t prev_corner(std::uint32_t block, std::uint32_t c) const {
-    return c == corner_begin[block] ? corner_begin[block + 1] - 1 : c - 1;
-  }
+  std::uint32_t prev_corner(std::uint32_t, std::uint32_t c) const { return shape[c].prev; }
   void refresh_world();
   Point to_world(std::uint32_t block, Point local) const {
     const double c = cos_t[block], s = sin_t[block];
