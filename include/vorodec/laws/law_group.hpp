@@ -119,18 +119,21 @@ class LawGroupOf final : public LawGroup {
 
   template <bool prefetch>
   void step_range(StepContext& ctx, std::size_t begin, std::size_t end) {
-    model::Blocks& bl = *ctx.blocks;
-    model::Contact* contacts = ctx.contacts;
-    model::ContactForce* forces = ctx.forces;
-    const std::uint8_t* shared_sides = ctx.shared_sides;
-    model::BlockForceSum* sums = ctx.sums;
-    const Loop loop = loop_constants(ctx);
     const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
     // One part per thread; a thread the runtime did not grant (or a group too small to be worth
     // a parallel region) leaves its part to the others.
 #pragma omp parallel num_threads(chunks) if (end - begin >= 2048) reduction(+ : slip, breakage)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
+      // Private to the thread: shared ones are read through the region's data block, again after
+      // every one-byte store.
+      const model::CornerView bl = ctx.blocks->corners();
+      const model::BlockKinematics* kin = ctx.blocks->kin.data();
+      model::Contact* contacts = ctx.contacts;
+      model::ContactForce* forces = ctx.forces;
+      const std::uint8_t* shared_sides = ctx.shared_sides;
+      model::BlockForceSum* sums = ctx.sums;
+      const Loop loop = loop_constants(ctx);
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
       for (std::size_t i = lo; i < hi; ++i) {
@@ -141,13 +144,13 @@ class LawGroupOf final : public LawGroup {
           __builtin_prefetch(&bl.world[ahead.edge]);
           __builtin_prefetch(&bl.shape[ahead.edge]);
           __builtin_prefetch(&bl.world[ahead.corner]);
-          __builtin_prefetch(&bl.kin[static_cast<std::size_t>(ahead.b)]);
+          __builtin_prefetch(&kin[static_cast<std::size_t>(ahead.b)]);
         }
         model::Contact& c = contacts[i];
         const model::ContactFrame f = model::contact_frame(bl, c);
         const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-        const model::BlockKinematics& ka = bl.kin[a];
-        const model::BlockKinematics& kb = bl.kin[b];
+        const model::BlockKinematics& ka = kin[a];
+        const model::BlockKinematics& kb = kin[b];
         // Relative velocity of a with respect to b at the contact point.
         const double vrx =
             (ka.vx - ka.omega * (f.point.y - ka.y)) - (kb.vx - kb.omega * (f.point.y - kb.y));

@@ -39,7 +39,7 @@ inline ContactFrame corner_edge_frame(Point cA, double rA, Point v0, Point v1, P
 
 // Geometry of contact c from the world arrays (Blocks::refresh_world), walking to a neighbouring
 // edge of b when the corner has moved past the arc at the end of its current edge (updates c.edge).
-inline ContactFrame contact_frame(const Blocks& bl, Contact& c) {
+inline ContactFrame contact_frame(const CornerView& bl, Contact& c) {
   const Point cA = bl.world[c.corner].centre;
   const double rA = bl.shape[c.corner].radius;
   for (int walk = 0;; ++walk) {
@@ -68,7 +68,7 @@ inline ContactFrame contact_frame(const Blocks& bl, Contact& c) {
     if (walk == 2) return f;
     // Past the arc onto the neighbouring edge? Then that edge is the contact's feature.
     if (f.side < 0) {
-      const std::uint32_t ep = bl.prev_corner(static_cast<std::uint32_t>(c.b), e0);
+      const std::uint32_t ep = edge.prev;
       if (dot(d, v0 - bl.world[ep].corner) >= 0.0) return f;
       c.edge = ep;
     } else {
@@ -76,6 +76,10 @@ inline ContactFrame contact_frame(const Blocks& bl, Contact& c) {
       c.edge = e1;
     }
   }
+}
+
+inline ContactFrame contact_frame(const Blocks& bl, Contact& c) {
+  return contact_frame(bl.corners(), c);
 }
 
 }  // namespace vorodec::model

@@ -29,6 +29,13 @@ struct CornerWorld {
   Point centre;  // arc centre, world frame
 };
 
+// The corner records that contact geometry reads, as plain pointers: a loop that stores a
+// contact's one-byte state (which may alias anything) would otherwise reload them from the vectors.
+struct CornerView {
+  const CornerWorld* world;
+  const CornerShape* shape;
+};
+
 struct BlockKinematics {
   double x, y, vx, vy, omega;
 };
@@ -62,6 +69,7 @@ struct Blocks {
   std::size_t size() const { return x.size(); }
   std::uint32_t next_corner(std::uint32_t, std::uint32_t c) const { return shape[c].next; }
   std::uint32_t prev_corner(std::uint32_t, std::uint32_t c) const { return shape[c].prev; }
+  CornerView corners() const { return {world.data(), shape.data()}; }
   void refresh_world();
   Point to_world(std::uint32_t block, Point local) const {
     const double c = cos_t[block], s = sin_t[block];
