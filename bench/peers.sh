@@ -67,13 +67,20 @@ import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1]) if l.strip()]
 def rate(r):  # contact updates per second, as each code reports it
     return r.get("cu_per_s") or r.get("contact_updates_per_s") or r.get("contact-updates/s")
-print("| run | bodies | steps | wall s | cu/s | cu/s per core |")
-print("|---|---|---|---|---|---|")
+def par(r):  # threads, MPI ranks or ESyS workers
+    return r.get("threads") or r.get("mpi_ranks") or r.get("workers") or r.get("par") or 1
+def size(r):
+    return 5000 if r.get("bodies", r.get("particles", 0)) < 10000 else 20000
+# vorodec's 1-thread rate per core at each size, the numerator of every ratio
+ours = {size(r): rate(r) for r in rows if r["name"].startswith("vorodec") and par(r) == 1}
+print("| run | bodies | steps | wall s | cu/s | cu/s per core | vorodec 1 thread / this, per core |")
+print("|---|---|---|---|---|---|---|")
 for r in rows:
-    cu = rate(r)
-    par = r.get("threads") or r.get("par") or 1
-    print("| %s | %s | %s | %s | %s | %s |" % (r["name"], r.get("bodies", r.get("particles", "?")),
+    cu, p = rate(r), par(r)
+    per_core = cu / p if cu else None
+    ratio = ours.get(size(r)) / per_core if per_core and size(r) in ours else None
+    print("| %s | %s | %s | %s | %s | %s | %s |" % (r["name"], r.get("bodies", r.get("particles", "?")),
           r.get("steps", "?"), r.get("wall_s", "?"), "%.3g" % cu if cu else "?",
-          "%.3g" % (cu / par) if cu and isinstance(par, int) else "?"))
+          "%.3g" % per_core if per_core else "?", "%.2g" % ratio if ratio else "?"))
 PY
 echo "raw results: $results"
