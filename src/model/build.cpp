@@ -63,8 +63,7 @@ void add_block(Model& model, std::span<const Point> polygon, double density, Gro
     const Point e = polygon[j] - polygon[i];
     const double inv = 1.0 / std::sqrt(dot(e, e));
     b.shape.push_back({radii[i], inv, dot(centres[i] - polygon[i], inv * e),
-                       dot(centres[j] - polygon[i], inv * e),
-                       first + static_cast<std::uint32_t>(j),
+                       dot(centres[j] - polygon[i], inv * e), first + static_cast<std::uint32_t>(j),
                        first + static_cast<std::uint32_t>((i + n - 1) % n)});
   }
   b.corner_begin.push_back(static_cast<std::uint32_t>(b.corner.size()));

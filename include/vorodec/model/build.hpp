@@ -1,8 +1,8 @@
 #pragma once
 // Turns a tessellation into rigid blocks (mass properties, rounded corners) plus loading platens.
 #include <optional>
-#include <vector>
 #include <span>
+#include <vector>
 
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/model/model.hpp"
