@@ -69,8 +69,10 @@ def rate(r):  # contact updates per second, as each code reports it
     return r.get("cu_per_s") or r.get("contact_updates_per_s") or r.get("contact-updates/s")
 def par(r):  # threads, MPI ranks or ESyS workers
     return r.get("threads") or r.get("mpi_ranks") or r.get("workers") or r.get("par") or 1
+def bodies(r):  # vorodec's blocks or the peers' particles
+    return r.get("bodies", r.get("particles", 0))
 def size(r):
-    return 5000 if r.get("bodies", r.get("particles", 0)) < 10000 else 20000
+    return 5000 if bodies(r) < 10000 else 20000
 # vorodec's 1-thread rate per core at each size, the numerator of every ratio
 ours = {size(r): rate(r) for r in rows if r["name"].startswith("vorodec") and par(r) == 1}
 print("| run | bodies | steps | wall s | cu/s | cu/s per core | vorodec 1 thread / this, per core |")
@@ -79,7 +81,7 @@ for r in rows:
     cu, p = rate(r), par(r)
     per_core = cu / p if cu else None
     ratio = ours.get(size(r)) / per_core if per_core and size(r) in ours else None
-    print("| %s | %s | %s | %s | %s | %s | %s |" % (r["name"], r.get("bodies", r.get("particles", "?")),
+    print("| %s | %s | %s | %s | %s | %s | %s |" % (r["name"], bodies(r),
           r.get("steps", "?"), r.get("wall_s", "?"), "%.3g" % cu if cu else "?",
           "%.3g" % per_core if per_core else "?", "%.2g" % ratio if ratio else "?"))
 PY
