@@ -1,5 +1,7 @@
 #include "vorodec/model/build.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -71,26 +73,56 @@ void add_block(Model& model, std::span<const Point> polygon, double density, Gro
   b.kin.resize(b.size());
 }
 
+namespace {
+// Blocks turn little, so their rotation is almost always below this. There the Taylor series of
+// sin to x^13 and of cos to x^14 are exact to rounding (next terms < 1e-21) and, unlike libm's
+// sincos, vectorise: a fifth of the instructions.
+constexpr double small_angle = 0.25;
+
+void small_angle_sincos(const double* theta, double* cos_t, double* sin_t, std::int64_t lo,
+                        std::int64_t hi) {
+  constexpr double s3 = -1.0 / 6, s5 = 1.0 / 120, s7 = -1.0 / 5040, s9 = 1.0 / 362880,
+                   s11 = -1.0 / 39916800, s13 = 1.0 / 6227020800;
+  constexpr double c2 = -1.0 / 2, c4 = 1.0 / 24, c6 = -1.0 / 720, c8 = 1.0 / 40320,
+                   c10 = -1.0 / 3628800, c12 = 1.0 / 479001600, c14 = -1.0 / 87178291200;
+#pragma omp simd
+  for (std::int64_t b = lo; b < hi; ++b) {
+    const double t = theta[b], t2 = t * t;
+    sin_t[b] = t + t * t2 * (s3 + t2 * (s5 + t2 * (s7 + t2 * (s9 + t2 * (s11 + t2 * s13)))));
+    cos_t[b] =
+        1.0 + t2 * (c2 + t2 * (c4 + t2 * (c6 + t2 * (c8 + t2 * (c10 + t2 * (c12 + t2 * c14))))));
+  }
+}
+}  // namespace
+
 void Blocks::refresh_world() {
   const auto n = static_cast<std::int64_t>(size());
   // Plain pointers: through vector members the compiler must reload every block value after each
   // store to world (a double store might alias them).
   const Point *local_corner = corner.data(), *local_centre = round_centre.data();
   CornerWorld* w = world.data();
-#pragma omp parallel for schedule(static)
-  for (std::int64_t bi = 0; bi < n; ++bi) {
-    const auto b = static_cast<std::size_t>(bi);
-    const double xb = x[b], yb = y[b];
-    const double c = std::cos(theta[b]), s = std::sin(theta[b]);
-    cos_t[b] = c;
-    sin_t[b] = s;
-    const std::uint32_t k0 = corner_begin[b], k1 = corner_begin[b + 1];
-    for (std::uint32_t k = k0; k < k1; ++k) {
-      const Point p = local_corner[k], q = local_centre[k];
-      w[k] = {{xb + c * p.x - s * p.y, yb + s * p.x + c * p.y},
-              {xb + c * q.x - s * q.y, yb + s * q.x + c * q.y}};
+  const double* t = theta.data();
+  double *cs = cos_t.data(), *sn = sin_t.data();
+#pragma omp parallel
+  {
+    const std::int64_t parts = omp_get_num_threads(), part = omp_get_thread_num();
+    const std::int64_t lo = n * part / parts, hi = n * (part + 1) / parts;
+    small_angle_sincos(t, cs, sn, lo, hi);
+    for (std::int64_t bi = lo; bi < hi; ++bi) {
+      const auto b = static_cast<std::size_t>(bi);
+      if (std::abs(t[b]) > small_angle) {
+        cs[b] = std::cos(t[b]);
+        sn[b] = std::sin(t[b]);
+      }
+      const double xb = x[b], yb = y[b], c = cs[b], s = sn[b];
+      const std::uint32_t k0 = corner_begin[b], k1 = corner_begin[b + 1];
+      for (std::uint32_t k = k0; k < k1; ++k) {
+        const Point p = local_corner[k], q = local_centre[k];
+        w[k] = {{xb + c * p.x - s * p.y, yb + s * p.x + c * p.y},
+                {xb + c * q.x - s * q.y, yb + s * q.x + c * q.y}};
+      }
+      kin[b] = {xb, yb, vx[b], vy[b], omega[b]};
     }
-    kin[b] = {xb, yb, vx[b], vy[b], omega[b]};
   }
 }
 
