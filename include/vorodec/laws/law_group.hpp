@@ -220,7 +220,8 @@ class LawGroupOf final : public LawGroup {
       cracks.push_back(
           {loop.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
     } else {
-      slip += dissipated;
+      // Most steps are elastic and dissipate nothing: they skip the sum, which lives on the stack.
+      if (!r.elastic) slip += dissipated;
       if (c.state <= model::ContactState::slipping)
         c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
                                                 : model::ContactState::intact;
