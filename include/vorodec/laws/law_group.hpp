@@ -200,12 +200,14 @@ class LawGroupOf final : public LawGroup {
     const double dt = loop.dt;
     auto& props = loop.props[li];
     const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
-    const double fn0 = c.fn, fs0 = c.fs;
     const LawResult r = Law::evaluate(k, props, loop.state[li]);
     // Energy a contact dissipates in one step: work done on it minus its strain-energy change
     // (zero by construction in an elastic step).
     double dissipated = 0.0;
     if (!r.elastic) {
+      // Read here, not before evaluate: the law's state stores might alias them for the compiler,
+      // which would then load and keep them (on the stack) for every contact.
+      const double fn0 = c.fn, fs0 = c.fs;
       const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
       dissipated =
           work - (Law::strain_energy(props, r.fn, r.fs) - Law::strain_energy(props, fn0, fs0));
