@@ -77,8 +77,8 @@ class LawGroupOf final : public LawGroup {
       const model::BodyPoint pb = model::edge_point(bl, z, b, c.edge, f.point);
       const model::Point va = model::velocity_at(bl, z, a, pa, f.point);
       const model::Point vb = model::velocity_at(bl, z, b, pb, f.point);
-      const model::Point force =
-          update(loop, c, f, va.x - vb.x, va.y - vb.y, i - begin, cracks, slip, breakage);
+      const model::Point force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f,
+                                        va.x - vb.x, va.y - vb.y, cracks, slip, breakage);
       const std::uint8_t shared = ctx.shared_sides[i];
       const auto apply = [&](std::size_t blk, const model::BodyPoint& p, double sign, bool on_b) {
         if (p.g0 >= 0) {
@@ -136,17 +136,22 @@ class LawGroupOf final : public LawGroup {
       const Loop loop = loop_constants(ctx);
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
-      for (std::size_t i = lo; i < hi; ++i) {
+      // Walked by pointers: an index would be one more register, spilled, in a loop short of them.
+      typename Law::Props* props = loop.props + (lo - begin);
+      typename Law::State* state = loop.state + (lo - begin);
+      const std::uint8_t* shared_side = shared_sides + lo;
+      model::Contact* const last = contacts + hi;
+      for (model::Contact* cp = contacts + lo; cp != last; ++cp, ++props, ++state, ++shared_side) {
         // The edge's records sit at the neighbour block's corners, not in contact order: fetch
         // them a few contacts ahead so their latency overlaps the work on this one.
-        if (prefetch && i + prefetch_ahead < hi) {
-          const model::Contact& ahead = contacts[i + prefetch_ahead];
+        if (prefetch && last - cp > std::ptrdiff_t{prefetch_ahead}) {
+          const model::Contact& ahead = cp[prefetch_ahead];
           __builtin_prefetch(&bl.world[ahead.edge]);
           __builtin_prefetch(&bl.shape[ahead.edge]);
           __builtin_prefetch(&bl.world[ahead.corner]);
           __builtin_prefetch(&kin[static_cast<std::size_t>(ahead.b)]);
         }
-        model::Contact& c = contacts[i];
+        model::Contact& c = *cp;
         const model::ContactFrame f = model::contact_frame(bl, c);
         const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
         const model::BlockKinematics& ka = kin[a];
@@ -156,12 +161,13 @@ class LawGroupOf final : public LawGroup {
             (ka.vx - ka.omega * (f.point.y - ka.y)) - (kb.vx - kb.omega * (f.point.y - kb.y));
         const double vry =
             (ka.vy + ka.omega * (f.point.x - ka.x)) - (kb.vy + kb.omega * (f.point.x - kb.x));
-        const model::Point force = update(loop, c, f, vrx, vry, i - begin, cracks, slip, breakage);
+        const model::Point force =
+            update(loop, c, *props, *state, f, vrx, vry, cracks, slip, breakage);
         const double fx = force.x, fy = force.y;
         const double ma = (f.point.x - ka.x) * fy - (f.point.y - ka.y) * fx;
         const double mb = (f.point.x - kb.x) * fy - (f.point.y - kb.y) * fx;
-        const std::uint8_t shared = shared_sides[i];
-        if (shared != 0) forces[i] = {fx, fy, ma, mb};
+        const std::uint8_t shared = *shared_side;
+        if (shared != 0) forces[cp - contacts] = {fx, fy, ma, mb};
         if (!(shared & a_shared)) {
           sums[a].fx += fx;
           sums[a].fy += fy;
@@ -189,18 +195,18 @@ class LawGroupOf final : public LawGroup {
     return {props_.data(), state_.data(), ctx.dt, ctx.time};
   }
 
-  // Law::evaluate for contact i (local index li) with relative velocity (vrx, vry) of a with
-  // respect to b, its bookkeeping (state, crack, dissipation), and the force on a.
+  // Law::evaluate for contact c with its properties and state, relative velocity (vrx, vry) of a
+  // with respect to b, its bookkeeping (state, crack, dissipation), and the force on a.
   [[gnu::always_inline]] inline model::Point update(const Loop& loop, model::Contact& c,
+                                                    const typename Law::Props& props,
+                                                    typename Law::State& state,
                                                     const model::ContactFrame& f, double vrx,
-                                                    double vry, std::size_t li,
-                                                    std::vector<CrackEvent>& cracks, double& slip,
-                                                    double& breakage) {
+                                                    double vry, std::vector<CrackEvent>& cracks,
+                                                    double& slip, double& breakage) {
     const model::Point s{-f.n.y, f.n.x};
     const double dt = loop.dt;
-    auto& props = loop.props[li];
     const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
-    const LawResult r = Law::evaluate(k, props, loop.state[li]);
+    const LawResult r = Law::evaluate(k, props, state);
     // Energy a contact dissipates in one step: work done on it minus its strain-energy change
     // (zero by construction in an elastic step).
     double dissipated = 0.0;
