@@ -43,6 +43,28 @@ TEST(RigidBlocks, ContactForcesSumToZeroOverAllBlocks) {
   EXPECT_LT(std::abs(fx) + std::abs(fy), 1e-12 * scale);
 }
 
+// A platen's velocity is the load path's: contact forces must not change it, whatever mass it was
+// given (its mass never enters the integration).
+TEST(RigidBlocks, PrescribedBlockKeepsItsVelocityWhateverItsMass) {
+  model::Model m;
+  m.rounding_length = 0.01 * a;
+  model::add_block(m, verification::square(0, 0, a), rho, Group::specimen);
+  model::add_block(m, verification::square(a, 0, a), rho, Group::top_platen);
+  m.blocks.mass[1] = 0.0;
+  m.blocks.inertia[1] = 0.0;
+  solver::SolverSettings s;
+  auto solver = verification::make_solver(m, "linear_elastic",
+                                          verification::params({{"jkn", 1e10}, {"jks", 5e9}}), s);
+  m.blocks.vx[1] = -0.01;
+  const double x0 = m.blocks.x[1];
+  for (int i = 0; i < 100; ++i) solver->step();
+  EXPECT_GT(std::abs(solver->contact_force(1).x), 0.0);  // the blocks do press on each other
+  EXPECT_EQ(m.blocks.vx[1], -0.01);
+  EXPECT_EQ(m.blocks.vy[1], 0.0);
+  EXPECT_EQ(m.blocks.omega[1], 0.0);
+  EXPECT_NEAR(m.blocks.x[1], x0 - 0.01 * solver->time(), 1e-12 * a);
+}
+
 // The world refresh computes small rotations by series, not libm: it must agree with std::cos and
 // std::sin to one unit in the last place (10^7 random angles: at most 1) on both sides of its
 // switch-over (0.25 rad), and a rotated corner must sit where the rotation puts it.

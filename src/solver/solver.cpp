@@ -259,10 +259,13 @@ Works integrate_blocks(const BlockArrays a, std::int64_t nb, double alpha, doubl
     const double dmz = -alpha * std::abs(mz) * sign(w);
     // 1 for a free block, 0 for a prescribed one: products, not selects, so that the loop
     // vectorises (a select of a division may not be if-converted); x 1 and + 0 are exact.
-    const double free = a.prescribed[b] != 0 ? 0.0 : 1.0;
-    const double u1 = u + free * ((fx + dfx) / a.mass[b] * dt);
-    const double v1 = v + free * ((fy + dfy) / a.mass[b] * dt);
-    const double w1 = w + free * ((mz + dmz) / a.inertia[b] * dt);
+    const bool held = a.prescribed[b] != 0;
+    const double free = held ? 0.0 : 1.0;
+    // A held block's product must be 0, not 0 x inf: its mass never enters, so it may be anything.
+    const double m = held ? 1.0 : a.mass[b], inertia = held ? 1.0 : a.inertia[b];
+    const double u1 = u + free * ((fx + dfx) / m * dt);
+    const double v1 = v + free * ((fy + dfy) / m * dt);
+    const double w1 = w + free * ((mz + dmz) / inertia * dt);
     // Work of a platen on the specimen: minus the contact force the specimen exerts on it.
     w_boundary +=
         free * ((a.fx_applied[b] * u1 + a.fy_applied[b] * v1 + a.m_applied[b] * w1) * dt) -
