@@ -52,7 +52,8 @@ struct MohrCoulomb {
     }
     const double fs_trial = st.fs - p.ks * k.du_s;
     double fmax = st.broken ? r.fn * p.tan_phi_res : p.cohesion_force + r.fn * p.tan_phi;
-    if (std::abs(fs_trial) > std::max(fmax, 0.0)) {
+    const double fs_size = std::abs(fs_trial);
+    if (fs_size > fmax && fs_size > 0.0) {  // |Fs| > max(Fmax, 0), as two compares: no blend
       r.elastic = false;
       if (!st.broken) {
         r.event = ContactEvent::shear_failure;
