@@ -21,41 +21,73 @@ struct Box {
   double x0, y0, x1, y1;
 };
 
-Box world_box(const Blocks& bl, std::uint32_t b, double margin) {
-  Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-          -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
-  for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
-    const Point p = bl.deformable[b] ? bl.world[c].corner : bl.to_world(b, bl.corner[c]);
-    box = {std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x),
-           std::max(box.y1, p.y)};
+// What the narrow phase reads of every block and corner, computed once per detection: each
+// corner-block test would otherwise redo the block's box and a square root per edge.
+struct DetectionGeometry {
+  std::vector<Box> box;              // of the block's unrounded corners, which holds its outline
+  std::vector<double> edge_len;      // m, length of the edge that starts at each corner
+  std::vector<std::uint8_t> convex;  // 1: no reflex corner (its edge lines bound its distance)
+
+  explicit DetectionGeometry(const Blocks& bl) {
+    const auto n = static_cast<std::int64_t>(bl.size());
+    box.resize(bl.size());
+    edge_len.resize(bl.world.size());
+    convex.resize(bl.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t bi = 0; bi < n; ++bi) {
+      const auto b = static_cast<std::uint32_t>(bi);
+      Box bx{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+             -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+      bool no_reflex = true;
+      for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
+        const Point p = bl.world[c].corner;
+        bx = {std::min(bx.x0, p.x), std::min(bx.y0, p.y), std::max(bx.x1, p.x),
+              std::max(bx.y1, p.y)};
+        const Point t = bl.world[bl.shape[c].next].corner - p;
+        edge_len[c] = std::sqrt(dot(t, t));
+        no_reflex = no_reflex && cross(p - bl.world[bl.shape[c].prev].corner, t) >= 0.0;
+      }
+      box[b] = bx;
+      convex[b] = no_reflex;
+    }
   }
-  return {box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin};
-}
+};
 
 // Nearest feature of block b to corner `corner` of block a; the frame's edge is returned in `edge`.
-ContactFrame nearest_feature(const Blocks& bl, std::uint32_t corner, std::uint32_t b,
-                             std::uint32_t& edge) {
+// A corner farther than `give_up` outside one of a convex b's edge lines is farther than that from
+// b's rounded outline (which lies inside the polygon): its gap is reported as infinite.
+ContactFrame nearest_feature(const Blocks& bl, const DetectionGeometry& geo, std::uint32_t corner,
+                             std::uint32_t b, std::uint32_t& edge, double give_up) {
   const Point cA = bl.world[corner].centre;
   const double rA = bl.shape[corner].radius;
+  const std::uint32_t first = bl.corner_begin[b], end = bl.corner_begin[b + 1];
+  // Distance of cA outside the line of the edge starting at e0.
+  const auto outside_of = [&](std::uint32_t e0) {
+    const Point v0 = bl.world[e0].corner, v1 = bl.world[bl.shape[e0].next].corner;
+    return cross(v1 - v0, cA - v0) / -geo.edge_len[e0];
+  };
   ContactFrame best{};
   best.gap = std::numeric_limits<double>::max();
+  if (geo.convex[b]) {
+    double deepest = -std::numeric_limits<double>::max();
+    for (std::uint32_t e0 = first; e0 < end; ++e0) deepest = std::max(deepest, outside_of(e0));
+    if (deepest - rA > give_up) return best;
+  }
   double deepest = -std::numeric_limits<double>::max();
-  std::uint32_t deepest_edge = bl.corner_begin[b];
+  std::uint32_t deepest_edge = first;
   bool outside = false;
-  for (std::uint32_t e0 = bl.corner_begin[b]; e0 < bl.corner_begin[b + 1]; ++e0) {
+  for (std::uint32_t e0 = first; e0 < end; ++e0) {
     const std::uint32_t e1 = bl.next_corner(b, e0);
-    const Point v0 = bl.world[e0].corner, v1 = bl.world[e1].corner;
-    const Point t = v1 - v0;
-    const double h = cross(t, cA - v0) / -std::sqrt(dot(t, t));  // distance outside the edge line
+    const double h = outside_of(e0);
     if (h > deepest) {
       deepest = h;
       deepest_edge = e0;
     }
     if (h <= 0) continue;
     outside = true;
-    const ContactFrame f =
-        model::corner_edge_frame(cA, rA, v0, v1, bl.world[e0].centre, bl.shape[e0].radius,
-                                 bl.world[e1].centre, bl.shape[e1].radius);
+    const ContactFrame f = model::corner_edge_frame(
+        cA, rA, bl.world[e0].corner, bl.world[e1].corner, geo.edge_len[e0], bl.world[e0].centre,
+        bl.shape[e0].radius, bl.world[e1].centre, bl.shape[e1].radius);
     if (f.gap < best.gap) {
       best = f;
       edge = e0;
@@ -65,8 +97,8 @@ ContactFrame nearest_feature(const Blocks& bl, std::uint32_t corner, std::uint32
     const std::uint32_t e0 = deepest_edge, e1 = bl.next_corner(b, e0);
     edge = e0;
     best = model::corner_edge_frame(cA, rA, bl.world[e0].corner, bl.world[e1].corner,
-                                    bl.world[e0].centre, bl.shape[e0].radius, bl.world[e1].centre,
-                                    bl.shape[e1].radius);
+                                    geo.edge_len[e0], bl.world[e0].centre, bl.shape[e0].radius,
+                                    bl.world[e1].centre, bl.shape[e1].radius);
   }
   return best;
 }
@@ -119,11 +151,21 @@ SortKey pair_key(const Contact& c, std::size_t index) {
           index};
 }
 
-template <class Key>
-std::vector<std::size_t> sorted_order(const std::vector<Contact>& contacts, Key key) {
+// Indices of the contacts in key order. `bucket` (< buckets) must order as the key's leading
+// fields do: a counting sort into buckets, then a sort of each bucket's few contacts, is linear
+// where one sort of all keys is n log n.
+template <class Key, class Bucket>
+std::vector<std::size_t> sorted_order(const std::vector<Contact>& contacts, Key key, Bucket bucket,
+                                      std::size_t buckets) {
+  std::vector<std::uint32_t> start(buckets + 1, 0);
+  for (const Contact& c : contacts) ++start[bucket(c) + 1];
+  for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
   std::vector<SortKey> keys(contacts.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = key(contacts[i], i);
-  std::sort(keys.begin(), keys.end());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    keys[fill[bucket(contacts[i])]++] = key(contacts[i], i);
+  for (std::size_t b = 0; b < buckets; ++b)
+    std::sort(keys.begin() + start[b], keys.begin() + start[b + 1]);
   std::vector<std::size_t> order(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
   return order;
@@ -158,9 +200,10 @@ void assign_lengths(std::vector<Candidate>& pair_contacts, double d, double min_
   }
 }
 
-}  // namespace
-
-std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const Blocks& bl, double margin) {
+// Candidate block pairs (a < b) whose boxes, enlarged by `margin`, overlap.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const Blocks& bl,
+                                                                 const DetectionGeometry& geo,
+                                                                 double margin) {
   const auto n = static_cast<std::uint32_t>(bl.size());
   std::vector<Box> boxes(n);
   double size = 0;
@@ -168,7 +211,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const Blocks& b
   Box all{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
           -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
   for (std::uint32_t b = 0; b < n; ++b) {
-    boxes[b] = world_box(bl, b, margin);
+    const Box& g = geo.box[b];
+    boxes[b] = {g.x0 - margin, g.y0 - margin, g.x1 + margin, g.y1 + margin};
     all = {std::min(all.x0, boxes[b].x0), std::min(all.y0, boxes[b].y0),
            std::max(all.x1, boxes[b].x1), std::max(all.y1, boxes[b].y1)};
     if (bl.group[b] == model::Group::specimen) {
@@ -214,25 +258,11 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const Blocks& b
   return pairs;
 }
 
-namespace {
-
 using BlockPair = std::pair<std::uint32_t, std::uint32_t>;
 
 BlockPair pair_of(const Contact& c) {
   return {static_cast<std::uint32_t>(std::min(c.a, c.b)),
           static_cast<std::uint32_t>(std::max(c.a, c.b))};
-}
-
-// Box of a block's unrounded corners, which holds its rounded outline.
-Box corner_box(const Blocks& bl, std::uint32_t b) {
-  Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-          -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
-  for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
-    const Point p = bl.world[c].corner;
-    box = {std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x),
-           std::max(box.y1, p.y)};
-  }
-  return box;
 }
 
 // The contacts of a run of block pairs, in pair order, as the serial sweep would list them.
@@ -250,6 +280,7 @@ struct NarrowPhase {
   const LawTable& table;
   const std::vector<BlockPair>& pairs;
   const std::vector<std::size_t>& old_order;
+  const DetectionGeometry& geo;
   double tolerance;
   bool bond_new;
 
@@ -257,8 +288,9 @@ struct NarrowPhase {
     const Blocks& bl = model.blocks;
     const double d = model.rounding_length;
     PairRun out;
-    std::vector<Candidate> pair_list, fresh;
-    std::vector<std::int64_t> pair_origin;
+    // Reused from pair to pair: allocating them per pair cost more than the searches.
+    std::vector<Candidate> pair_list, fresh, kept;
+    std::vector<std::int64_t> pair_origin, kept_origin;
     std::size_t old_pos = 0;
     if (begin > 0)
       old_pos = static_cast<std::size_t>(
@@ -301,7 +333,7 @@ struct NarrowPhase {
       // Narrow phase: every corner of each block against the other block.
       fresh.clear();
       for (const auto& [a, b] : {std::pair{pa, pb}, std::pair{pb, pa}}) {
-        const Box box = corner_box(bl, b);
+        const Box& box = geo.box[b];
         for (std::uint32_t k = bl.corner_begin[a]; k < bl.corner_begin[a + 1]; ++k) {
           bool existing = false;
           for (const Candidate& old : pair_list)
@@ -315,7 +347,10 @@ struct NarrowPhase {
                             cA.y < box.y0 - reach || cA.y > box.y1 + reach))
             continue;
           std::uint32_t edge = 0;
-          const ContactFrame f = nearest_feature(bl, k, b, edge);
+          // Margin far above round-off: a corner given up on has a gap beyond the tolerance.
+          const double give_up =
+              existing ? std::numeric_limits<double>::infinity() : tolerance + 1e-3 * d;
+          const ContactFrame f = nearest_feature(bl, geo, k, b, edge, give_up);
           for (Candidate& old : pair_list) {
             if (old.contact.a == static_cast<std::int32_t>(a) && old.contact.corner == k) {
               old.contact.edge = edge;
@@ -338,8 +373,8 @@ struct NarrowPhase {
         }
       }
       // Keep old contacts that are still close (or bonded and intact); drop the rest.
-      std::vector<Candidate> kept;
-      std::vector<std::int64_t> kept_origin;
+      kept.clear();
+      kept_origin.clear();
       for (std::size_t i = 0; i < pair_list.size(); ++i) {
         const Contact& c = pair_list[i].contact;
         if (c.gap <= tolerance || (c.bonded && c.state <= model::ContactState::slipping)) {
@@ -393,9 +428,13 @@ DetectionStats ContactDetector::detect(model::Model& model,
   Blocks& bl = model.blocks;
   model::refresh_world(model);
   // Existing contacts by pair; their position in the old array is remembered.
-  const std::vector<std::size_t> old_order = sorted_order(model.contacts, pair_key);
-  const auto pairs = broad_phase(bl, tolerance_ + 2.0 * model.rounding_length);
-  const NarrowPhase narrow{model, table_, pairs, old_order, tolerance_, bond_new};
+  const std::size_t nb = bl.size();
+  const std::vector<std::size_t> old_order = sorted_order(
+      model.contacts, pair_key,
+      [](const Contact& c) { return static_cast<std::size_t>(std::min(c.a, c.b)); }, nb);
+  const DetectionGeometry geo(bl);
+  const auto pairs = broad_phase(bl, geo, tolerance_ + 2.0 * model.rounding_length);
+  const NarrowPhase narrow{model, table_, pairs, old_order, geo, tolerance_, bond_new};
   const int runs = static_cast<int>(std::clamp<std::size_t>(
       pairs.size() / 256, 1, static_cast<std::size_t>(omp_get_max_threads())));
   std::vector<PairRun> parts(static_cast<std::size_t>(runs));
@@ -421,12 +460,18 @@ DetectionStats ContactDetector::detect(model::Model& model,
   // Sort by law then corner owner (memory order of the step loop).
   std::vector<Contact> contacts(result.size());
   for (std::size_t i = 0; i < result.size(); ++i) contacts[i] = result[i].contact;
-  const std::vector<std::size_t> order =
-      sorted_order(contacts, [&](const Contact& c, std::size_t i) {
-        return step_key(c, i,
-                        bl.deformable[static_cast<std::size_t>(c.a)] ||
-                            bl.deformable[static_cast<std::size_t>(c.b)]);
-      });
+  const auto touches_deformable = [&](const Contact& c) {
+    return bl.deformable[static_cast<std::size_t>(c.a)] ||
+           bl.deformable[static_cast<std::size_t>(c.b)];
+  };
+  const std::vector<std::size_t> order = sorted_order(
+      contacts,
+      [&](const Contact& c, std::size_t i) { return step_key(c, i, touches_deformable(c)); },
+      [&](const Contact& c) {  // law, rigid before deformable, corner owner: step_key's order
+        return (std::size_t{c.law} * 2 + touches_deformable(c)) * nb +
+               static_cast<std::size_t>(c.a);
+      },
+      laws.size() * 2 * nb);
   for (std::size_t i = 0; i < order.size(); ++i) contacts[i] = result[order[i]].contact;
 
   // Each law rebuilds its arrays from old local indices.

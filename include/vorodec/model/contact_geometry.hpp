@@ -14,11 +14,12 @@ struct ContactFrame {
   int side;     // -1: against the edge's start corner, 0: straight part, +1: against its end corner
 };
 
-// Corner arc (cA, rA) against edge v0 -> v1 whose end arcs are (c0, r0) and (c1, r1).
-inline ContactFrame corner_edge_frame(Point cA, double rA, Point v0, Point v1, Point c0, double r0,
-                                      Point c1, double r1) {
+// Corner arc (cA, rA) against edge v0 -> v1 of length `len` whose end arcs are (c0, r0) and
+// (c1, r1).
+inline ContactFrame corner_edge_frame(Point cA, double rA, Point v0, Point v1, double len, Point c0,
+                                      double r0, Point c1, double r1) {
   const Point e = v1 - v0;
-  const double inv_len = 1.0 / std::sqrt(dot(e, e));
+  const double inv_len = 1.0 / len;
   const Point t = inv_len * e;
   const double s = dot(cA - v0, t);
   ContactFrame f;

@@ -69,8 +69,4 @@ class ContactDetector {
   std::uint64_t next_id_ = 0;
 };
 
-// Candidate block pairs (a < b) whose boxes, enlarged by `margin`, overlap.
-std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const model::Blocks& blocks,
-                                                                 double margin);
-
 }  // namespace vorodec::solver
