@@ -229,32 +229,41 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const Blocks& b
     const auto j = std::clamp<std::int64_t>(static_cast<std::int64_t>((y - all.y0) / h), 0, ny - 1);
     return std::pair{i, j};
   };
-  std::vector<std::pair<std::int64_t, std::uint32_t>> entries;
-  for (std::uint32_t b = 0; b < n; ++b) {
+  // Blocks by cell (counting sort: within a cell in block order), a block in every cell its box
+  // overlaps.
+  const auto ncell = static_cast<std::size_t>(nx * ny);
+  std::vector<std::uint32_t> cell_begin(ncell + 1, 0);
+  const auto for_cells = [&](std::uint32_t b, auto&& f) {
     const auto [i0, j0] = cell_of(boxes[b].x0, boxes[b].y0);
     const auto [i1, j1] = cell_of(boxes[b].x1, boxes[b].y1);
     for (auto j = j0; j <= j1; ++j)
-      for (auto i = i0; i <= i1; ++i) entries.push_back({j * nx + i, b});
-  }
-  std::sort(entries.begin(), entries.end());
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (std::size_t lo = 0; lo < entries.size();) {
-    std::size_t hi = lo;
-    while (hi < entries.size() && entries[hi].first == entries[lo].first) ++hi;
-    for (std::size_t p = lo; p < hi; ++p) {
-      for (std::size_t q = p + 1; q < hi; ++q) {
-        const std::uint32_t a = entries[p].second, b = entries[q].second;
+      for (auto i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j * nx + i));
+  };
+  for (std::uint32_t b = 0; b < n; ++b) for_cells(b, [&](std::size_t c) { ++cell_begin[c + 1]; });
+  for (std::size_t c = 0; c < ncell; ++c) cell_begin[c + 1] += cell_begin[c];
+  std::vector<std::uint32_t> members(cell_begin.back());
+  std::vector<std::uint32_t> fill(cell_begin.begin(), cell_begin.end() - 1);
+  for (std::uint32_t b = 0; b < n; ++b)
+    for_cells(b, [&](std::size_t c) { members[fill[c]++] = b; });
+  // Pairs as (lower << 32 | higher): sorting plain integers is several times cheaper than pairs.
+  std::vector<std::uint64_t> keys;
+  for (std::size_t c = 0; c < ncell; ++c) {
+    for (std::uint32_t p = cell_begin[c]; p < cell_begin[c + 1]; ++p) {
+      for (std::uint32_t q = p + 1; q < cell_begin[c + 1]; ++q) {
+        const std::uint32_t a = members[p], b = members[q];  // a < b: filled in block order
         const Box &A = boxes[a], &B = boxes[b];
         if (A.x1 < B.x0 || B.x1 < A.x0 || A.y1 < B.y0 || B.y1 < A.y0) continue;
         // Report each pair once: in the cell holding the lower-left corner of the overlap.
         const auto [ci, cj] = cell_of(std::max(A.x0, B.x0), std::max(A.y0, B.y0));
-        if (cj * nx + ci != entries[lo].first) continue;
-        pairs.push_back({std::min(a, b), std::max(a, b)});
+        if (static_cast<std::size_t>(cj * nx + ci) != c) continue;
+        keys.push_back(std::uint64_t{a} << 32 | b);
       }
     }
-    lo = hi;
   }
-  std::sort(pairs.begin(), pairs.end());
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    pairs[i] = {static_cast<std::uint32_t>(keys[i] >> 32), static_cast<std::uint32_t>(keys[i])};
   return pairs;
 }
 
