@@ -86,6 +86,19 @@ inline void small_angle_cos_sin(double t, double& c, double& s) {
   s = t + t * t2 * (s3 + t2 * (s5 + t2 * (s7 + t2 * (s9 + t2 * (s11 + t2 * s13)))));
   c = 1.0 + t2 * (c2 + t2 * (c4 + t2 * (c6 + t2 * (c8 + t2 * (c10 + t2 * (c12 + t2 * c14))))));
 }
+
+// World positions of corners [k0, k1) of a block at `origin` turned by (c, s). Restrict
+// parameters: the caller's pointers might overlap for all the compiler knows, and it would test
+// that at run time before every block's few corners.
+inline void place_corners(const Point* __restrict corner, const Point* __restrict centre,
+                          CornerWorld* __restrict world, std::uint32_t k0, std::uint32_t k1,
+                          Point origin, double c, double s) {
+  for (std::uint32_t k = k0; k < k1; ++k) {
+    const Point p = corner[k], q = centre[k];
+    world[k] = {{origin.x + c * p.x - s * p.y, origin.y + s * p.x + c * p.y},
+                {origin.x + c * q.x - s * q.y, origin.y + s * q.x + c * q.y}};
+  }
+}
 }  // namespace
 
 void Blocks::refresh_world() {
@@ -109,13 +122,9 @@ void Blocks::refresh_world() {
         cs[b] = std::cos(t[b]);
         sn[b] = std::sin(t[b]);
       }
-      const double xb = x[b], yb = y[b], c = cs[b], s = sn[b];
-      const std::uint32_t k0 = corner_begin[b], k1 = corner_begin[b + 1];
-      for (std::uint32_t k = k0; k < k1; ++k) {
-        const Point p = local_corner[k], q = local_centre[k];
-        w[k] = {{xb + c * p.x - s * p.y, yb + s * p.x + c * p.y},
-                {xb + c * q.x - s * q.y, yb + s * q.x + c * q.y}};
-      }
+      const double xb = x[b], yb = y[b];
+      place_corners(local_corner, local_centre, w, corner_begin[b], corner_begin[b + 1], {xb, yb},
+                    cs[b], sn[b]);
       kin[b] = {xb, yb, vx[b], vy[b], omega[b]};
     }
   }
