@@ -1,5 +1,5 @@
-// Contact detection skips corners that lie far outside one of a block's edge lines; that bound
-// holds only for convex blocks, so a corner in a concave notch must still be found.
+// Contact detection finds a corner that sits far outside some of the other block's edge lines
+// but within the tolerance of its outline: pruning candidates by edge-line distance would lose it.
 #include <gtest/gtest.h>
 
 #include "scenes.hpp"

@@ -24,61 +24,45 @@ struct Box {
 // What the narrow phase reads of every block and corner, computed once per detection: each
 // corner-block test would otherwise redo the block's box and a square root per edge.
 struct DetectionGeometry {
-  std::vector<Box> box;              // of the block's unrounded corners, which holds its outline
-  std::vector<double> edge_len;      // m, length of the edge that starts at each corner
-  std::vector<std::uint8_t> convex;  // 1: no reflex corner (its edge lines bound its distance)
+  std::vector<Box> box;          // of the block's unrounded corners, which holds its outline
+  std::vector<double> edge_len;  // m, length of the edge that starts at each corner
 
   explicit DetectionGeometry(const Blocks& bl) {
     const auto n = static_cast<std::int64_t>(bl.size());
     box.resize(bl.size());
     edge_len.resize(bl.world.size());
-    convex.resize(bl.size());
 #pragma omp parallel for schedule(static)
     for (std::int64_t bi = 0; bi < n; ++bi) {
       const auto b = static_cast<std::uint32_t>(bi);
       Box bx{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
              -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
-      bool no_reflex = true;
       for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
         const Point p = bl.world[c].corner;
         bx = {std::min(bx.x0, p.x), std::min(bx.y0, p.y), std::max(bx.x1, p.x),
               std::max(bx.y1, p.y)};
         const Point t = bl.world[bl.shape[c].next].corner - p;
         edge_len[c] = std::sqrt(dot(t, t));
-        no_reflex = no_reflex && cross(p - bl.world[bl.shape[c].prev].corner, t) >= 0.0;
       }
       box[b] = bx;
-      convex[b] = no_reflex;
     }
   }
 };
 
 // Nearest feature of block b to corner `corner` of block a; the frame's edge is returned in `edge`.
-// A corner farther than `give_up` outside one of a convex b's edge lines is farther than that from
-// b's rounded outline (which lies inside the polygon): its gap is reported as infinite.
 ContactFrame nearest_feature(const Blocks& bl, const DetectionGeometry& geo, std::uint32_t corner,
-                             std::uint32_t b, std::uint32_t& edge, double give_up) {
+                             std::uint32_t b, std::uint32_t& edge) {
   const Point cA = bl.world[corner].centre;
   const double rA = bl.shape[corner].radius;
   const std::uint32_t first = bl.corner_begin[b], end = bl.corner_begin[b + 1];
-  // Distance of cA outside the line of the edge starting at e0.
-  const auto outside_of = [&](std::uint32_t e0) {
-    const Point v0 = bl.world[e0].corner, v1 = bl.world[bl.shape[e0].next].corner;
-    return cross(v1 - v0, cA - v0) / -geo.edge_len[e0];
-  };
   ContactFrame best{};
   best.gap = std::numeric_limits<double>::max();
-  if (geo.convex[b]) {
-    double deepest = -std::numeric_limits<double>::max();
-    for (std::uint32_t e0 = first; e0 < end; ++e0) deepest = std::max(deepest, outside_of(e0));
-    if (deepest - rA > give_up) return best;
-  }
   double deepest = -std::numeric_limits<double>::max();
   std::uint32_t deepest_edge = first;
   bool outside = false;
   for (std::uint32_t e0 = first; e0 < end; ++e0) {
     const std::uint32_t e1 = bl.next_corner(b, e0);
-    const double h = outside_of(e0);
+    const Point v0 = bl.world[e0].corner;
+    const double h = cross(bl.world[e1].corner - v0, cA - v0) / -geo.edge_len[e0];  // outside
     if (h > deepest) {
       deepest = h;
       deepest_edge = e0;
@@ -229,36 +213,33 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> broad_phase(const Blocks& b
     const auto j = std::clamp<std::int64_t>(static_cast<std::int64_t>((y - all.y0) / h), 0, ny - 1);
     return std::pair{i, j};
   };
-  // Blocks by cell (counting sort: within a cell in block order), a block in every cell its box
-  // overlaps.
-  const auto ncell = static_cast<std::size_t>(nx * ny);
-  std::vector<std::uint32_t> cell_begin(ncell + 1, 0);
-  const auto for_cells = [&](std::uint32_t b, auto&& f) {
+  // (cell, block) for every cell a block's box overlaps, sorted: sparse, so a block flung far
+  // from the specimen costs no memory for the empty cells between.
+  std::vector<std::pair<std::int64_t, std::uint32_t>> entries;
+  for (std::uint32_t b = 0; b < n; ++b) {
     const auto [i0, j0] = cell_of(boxes[b].x0, boxes[b].y0);
     const auto [i1, j1] = cell_of(boxes[b].x1, boxes[b].y1);
     for (auto j = j0; j <= j1; ++j)
-      for (auto i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j * nx + i));
-  };
-  for (std::uint32_t b = 0; b < n; ++b) for_cells(b, [&](std::size_t c) { ++cell_begin[c + 1]; });
-  for (std::size_t c = 0; c < ncell; ++c) cell_begin[c + 1] += cell_begin[c];
-  std::vector<std::uint32_t> members(cell_begin.back());
-  std::vector<std::uint32_t> fill(cell_begin.begin(), cell_begin.end() - 1);
-  for (std::uint32_t b = 0; b < n; ++b)
-    for_cells(b, [&](std::size_t c) { members[fill[c]++] = b; });
+      for (auto i = i0; i <= i1; ++i) entries.push_back({j * nx + i, b});
+  }
+  std::sort(entries.begin(), entries.end());
   // Pairs as (lower << 32 | higher): sorting plain integers is several times cheaper than pairs.
   std::vector<std::uint64_t> keys;
-  for (std::size_t c = 0; c < ncell; ++c) {
-    for (std::uint32_t p = cell_begin[c]; p < cell_begin[c + 1]; ++p) {
-      for (std::uint32_t q = p + 1; q < cell_begin[c + 1]; ++q) {
-        const std::uint32_t a = members[p], b = members[q];  // a < b: filled in block order
+  for (std::size_t lo = 0; lo < entries.size();) {
+    std::size_t hi = lo;
+    while (hi < entries.size() && entries[hi].first == entries[lo].first) ++hi;
+    for (std::size_t p = lo; p < hi; ++p) {
+      for (std::size_t q = p + 1; q < hi; ++q) {
+        const std::uint32_t a = entries[p].second, b = entries[q].second;  // a < b: sorted
         const Box &A = boxes[a], &B = boxes[b];
         if (A.x1 < B.x0 || B.x1 < A.x0 || A.y1 < B.y0 || B.y1 < A.y0) continue;
         // Report each pair once: in the cell holding the lower-left corner of the overlap.
         const auto [ci, cj] = cell_of(std::max(A.x0, B.x0), std::max(A.y0, B.y0));
-        if (static_cast<std::size_t>(cj * nx + ci) != c) continue;
+        if (cj * nx + ci != entries[lo].first) continue;
         keys.push_back(std::uint64_t{a} << 32 | b);
       }
     }
+    lo = hi;
   }
   std::sort(keys.begin(), keys.end());
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(keys.size());
@@ -356,10 +337,7 @@ struct NarrowPhase {
                             cA.y < box.y0 - reach || cA.y > box.y1 + reach))
             continue;
           std::uint32_t edge = 0;
-          // Margin far above round-off: a corner given up on has a gap beyond the tolerance.
-          const double give_up =
-              existing ? std::numeric_limits<double>::infinity() : tolerance + 1e-3 * d;
-          const ContactFrame f = nearest_feature(bl, geo, k, b, edge, give_up);
+          const ContactFrame f = nearest_feature(bl, geo, k, b, edge);
           for (Candidate& old : pair_list) {
             if (old.contact.a == static_cast<std::int32_t>(a) && old.contact.corner == k) {
               old.contact.edge = edge;
