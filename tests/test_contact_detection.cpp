@@ -40,3 +40,34 @@ TEST(ContactDetection, FindsACornerInAConcaveNotchOfTheOtherBlock) {
   EXPECT_GT(c.gap, 0.0);
   EXPECT_LE(c.gap, d);
 }
+
+// A corner next to an edge shorter than 2 d has an arc that meets that edge's line beyond the
+// edge, outside the block's corner box. A corner of another block within the tolerance of that
+// arc, but farther from the box than the tolerance plus its own radius, still gets a contact.
+TEST(ContactDetection, FindsACornerNearAnArcThatReachesPastItsBlocksBox) {
+  model::Model m;
+  const double d = 1e-4;  // m
+  m.rounding_length = d;
+  // Right side at x = 10 d, then an edge 0.11 d long up and to the left to W = (9.95 d, 5.1 d).
+  // W's arc meets the line of that short edge at (10.4 d, 4.2 d), right of the box.
+  const std::vector<Point> block{
+      {0, 0}, {10 * d, 0}, {10 * d, 5 * d}, {9.95 * d, 5.1 * d}, {0, 10 * d}};
+  // A diamond whose left corner points at that arc from 0.68 d away (its arc centre 2.2 d right
+  // of the box: beyond the tolerance d plus its radius d).
+  const double x = 10.783 * d, y = 4.206 * d, s = 3 * d;
+  const std::vector<Point> diamond{{x + s, y - s}, {x + 2 * s, y}, {x + s, y + s}, {x, y}};
+  model::add_block(m, block, 2600, Group::specimen);
+  model::add_block(m, diamond, 2600, Group::specimen);
+  solver::SolverSettings settings;
+  auto solver = verification::make_solver(
+      m, "linear_elastic", verification::params({{"jkn", 1e10}, {"jks", 1e10}}), settings);
+
+  ASSERT_EQ(m.contacts.size(), 1u);
+  const model::Contact& c = m.contacts[0];
+  EXPECT_EQ(c.a, 1);
+  EXPECT_EQ(c.b, 0);
+  EXPECT_EQ(c.corner, m.blocks.corner_begin[1] + 3);  // the diamond's left corner
+  EXPECT_EQ(c.edge, m.blocks.corner_begin[0] + 3);    // W -> (0, 10 d), whose start arc is W's
+  EXPECT_GT(c.gap, 0.6 * d);
+  EXPECT_LT(c.gap, 0.8 * d);
+}

@@ -329,10 +329,12 @@ struct NarrowPhase {
           for (const Candidate& old : pair_list)
             existing = existing ||
                        (old.contact.a == static_cast<std::int32_t>(a) && old.contact.corner == k);
-          // b's rounded outline lies in its corner box, so a corner farther from the box than
-          // the tolerance plus its radius has a gap beyond the tolerance: skip the search.
+          // b's rounded outline lies within d of its corner box: an arc meets its edges at most
+          // d from its corner, and bulges towards it (on an edge shorter than 2 d it reaches past
+          // the polygon). A corner farther from the box than the tolerance plus its radius plus
+          // d has a gap beyond the tolerance: skip the search.
           const Point cA = bl.world[k].centre;
-          const double reach = tolerance + bl.shape[k].radius + 1e-3 * d;
+          const double reach = tolerance + bl.shape[k].radius + 1.001 * d;
           if (!existing && (cA.x < box.x0 - reach || cA.x > box.x1 + reach ||
                             cA.y < box.y0 - reach || cA.y > box.y1 + reach))
             continue;
