@@ -24,7 +24,7 @@ struct Box {
 // What the narrow phase reads of every block and corner, computed once per detection: each
 // corner-block test would otherwise redo the block's box and a square root per edge.
 struct DetectionGeometry {
-  std::vector<Box> box;          // of the block's unrounded corners, which holds its outline
+  std::vector<Box> box;          // of the block's unrounded corners; its outline is within d
   std::vector<double> edge_len;  // m, length of the edge that starts at each corner
 
   explicit DetectionGeometry(const Blocks& bl) {
