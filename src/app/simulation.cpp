@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "damage_output.hpp"
+#include "implicit_start.hpp"
 #include "progress.hpp"
 #include "vorodec/geometry/grains.hpp"
 #include "vorodec/io/csv_writer.hpp"
@@ -23,6 +24,7 @@
 #include "vorodec/measure/specimen.hpp"
 #include "vorodec/model/build.hpp"
 #include "vorodec/model/contact_geometry.hpp"
+#include "vorodec/solver/elastic_response.hpp"
 #include "vorodec/solver/solver.hpp"
 
 namespace vorodec::app {
@@ -250,6 +252,18 @@ std::string grain_summary(const io::ModelConfig& cfg, const geometry::Tessellati
       tess.grain_mineral.size(), minerals, cracks);
 }
 
+std::string implicit_json(const std::optional<ImplicitStart>& i) {
+  if (!i) return "";
+  return fmt::format(
+      ",\n  \"implicit_start\": {{\"platen_displacement_m\": {:.8g}, "
+      "\"elastic_reach_m\": {:.8g}, \"axial_stress_Pa\": {:.8g}, "
+      "\"linear_youngs_modulus_Pa\": {:.8g}, \"stage_time_s\": {:.8g}, \"dofs\": {}, "
+      "\"active_contacts\": {}, \"solves\": {}, \"solve_wall_time_s\": {:.4f}, "
+      "\"limit\": \"{}\"}}",
+      i->displacement, i->reach, i->stress, i->modulus, i->time, i->dofs, i->active_contacts,
+      i->passes, i->solve_seconds, i->limit);
+}
+
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,
                    const RunSummary& s, std::size_t initial_contacts, double dt, std::size_t broken,
                    const std::string& grains) {
@@ -270,7 +284,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
       "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
       "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n{}  \"failure_rate\": {:.6g},\n"
       "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
-      "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}\n}}\n",
+      "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}\n}}\n",
       cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
       s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear, grains,
       initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
@@ -278,7 +292,8 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
       s.zones ? fmt::format(",\n  \"zones\": {},\n  \"zone_stress_Pa\": {{\"xx\": {:.8g}, "
                             "\"yy\": {:.8g}, \"xy\": {:.8g}}}",
                             s.zones, s.zone_stress_xx, s.zone_stress_yy, s.zone_stress_xy)
-              : std::string());
+              : std::string(),
+      implicit_json(s.implicit_start));
 }
 
 }  // namespace
@@ -421,6 +436,17 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
       const double t0 = solver.time();
       loading::StageControl control(st, v, state.axial_stress, state.axial_strain);
       record(st.name + ":start");
+      if (st.implicit_start) {
+        try {
+          summary.implicit_start = implicit_start(model, solver, boundary, st);
+        } catch (const solver::ElasticResponseError& e) {
+          throw io::ModelFileError(fmt::format("{}: {}", cfg.implicit_start_where, e.what()),
+                                   fmt::format("stage[{}].implicit_start", si), e.what());
+        }
+        state = measure::measure_specimen(model, boundary, solver);
+        peak = std::max(peak, state.axial_stress);
+        record(st.name + ":implicit");
+      }
       for (;;) {
         if (solver.steps() >= step_limit) {
           summary.status = options.max_steps > 0 ? "stopped at --max-steps" : "step limit";

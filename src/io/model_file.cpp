@@ -303,7 +303,35 @@ loading::AdaptiveVelocity read_adaptive(TomlSection sec, double v0) {
 }
 
 // One [[stage]] table: a single stage, or a cyclic block expanded into its stages.
-void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>& stages) {
+// stage key implicit_start: the first velocity stage of an unconfined rigid-block model, loaded
+// from rest by compression (app/implicit_start).
+void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, ModelConfig& cfg) {
+  st.implicit_start = sec.boolean("implicit_start", false);
+  if (!st.implicit_start) {
+    for (const char* key : {"implicit_start_fraction", "implicit_start_increments"})
+      if (sec.has(key)) sec.fail(key, "needs implicit_start = true");
+    return;
+  }
+  if (!first) sec.fail("implicit_start", "only the first stage can start implicitly (from rest)");
+  if (st.control != loading::Control::platen_velocity || st.platen_velocity <= 0)
+    sec.fail("implicit_start", "needs a compressing velocity stage (platen_velocity > 0)");
+  if (cfg.load_path.confining_stress != 0)
+    sec.fail("implicit_start", "needs [loading] confining_stress = 0");
+  if (cfg.solver.gravity.x != 0 || cfg.solver.gravity.y != 0)
+    sec.fail("implicit_start", "needs [solver] gravity = [0, 0]");
+  if (cfg.deformable.enabled) sec.fail("implicit_start", "needs rigid blocks");
+  st.implicit_start_fraction = sec.positive("implicit_start_fraction", 0.9);
+  if (st.implicit_start_fraction > 1)
+    sec.fail("implicit_start_fraction",
+             fmt::format("must be in (0, 1] (got {})", st.implicit_start_fraction));
+  st.implicit_start_increments = static_cast<int>(sec.integer("implicit_start_increments", 10, 1));
+  const toml::source_region& at = sec.table().get("implicit_start")->source();
+  cfg.implicit_start_where = fmt::format("{}:{}: key '{}'", at.path ? *at.path : sec.file(),
+                                         at.begin.line, sec.key_path("implicit_start"));
+}
+
+void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>& stages,
+                 ModelConfig& cfg) {
   loading::Stage st;
   const std::string fallback = fmt::format("stage {}", index + 1);
   const std::string vel = "platen_velocity";
@@ -354,6 +382,7 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
              "a stage needs an end condition: end_axial_strain, end_post_peak_fraction, "
              "end_axial_stress or end_time");
   if (st.control == loading::Control::axial_stress) st.end.stress = st.target_stress;
+  read_implicit_start(sec, st, index == 0 && stages.empty(), cfg);
   sec.finish();
   stages.push_back(st);
 }
@@ -523,7 +552,7 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
   const toml::array& list = *stages->as_array();
   for (std::size_t i = 0; i < list.size(); ++i)
     read_stages(TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), file.string()), i,
-                cfg.load_path.stages);
+                cfg.load_path.stages, cfg);
 
   if (top.has("output")) {
     TomlSection o = top.sub("output");

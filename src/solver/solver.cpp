@@ -170,6 +170,15 @@ void Solver::step() {
         steps_ - last_detection_ >= settings_.max_detection_interval)
       detect(false);
   }
+  contact_forces();
+  integrate();
+  if (!model_.zoning.empty()) integrate_gridpoints();
+  time_ += dt_;
+  ++steps_;
+}
+
+void Solver::contact_forces() {
+  auto& bl = model_.blocks;
   if (chunks_ != omp_get_max_threads()) partition();  // the thread count changed
   std::fill(sums_.begin(), sums_.end(), model::BlockForceSum{});
   laws::StepContext ctx{&bl,
@@ -202,10 +211,34 @@ void Solver::step() {
   energy_.slip += ctx.totals.dissipated_slip;
   energy_.breakage += ctx.totals.dissipated_breakage;
   gather_shared_forces();
-  integrate();
-  if (!z.empty()) integrate_gridpoints();
-  time_ += dt_;
-  ++steps_;
+}
+
+void Solver::displace(const std::vector<double>& dx, const std::vector<double>& dy,
+                      const std::vector<double>& dtheta, double duration) {
+  auto& bl = model_.blocks;
+  const std::size_t nb = bl.size();
+  double work = 0.0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (bl.prescribed[b])  // minus the force the specimen exerts on it, before the jump
+      work -= 0.5 * (sums_[b].fx * dx[b] + sums_[b].fy * dy[b] + sums_[b].m * dtheta[b]);
+    bl.x[b] += dx[b];
+    bl.y[b] += dy[b];
+    bl.theta[b] += dtheta[b];
+    // The laws take this step's shear increment as velocity x dt.
+    bl.vx[b] = dx[b] / dt_;
+    bl.vy[b] = dy[b] / dt_;
+    bl.omega[b] = dtheta[b] / dt_;
+  }
+  model::refresh_world(model_);
+  detect(false);
+  contact_forces();
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (bl.prescribed[b])  // and after it
+      work -= 0.5 * (sums_[b].fx * dx[b] + sums_[b].fy * dy[b] + sums_[b].m * dtheta[b]);
+    bl.vx[b] = bl.vy[b] = bl.omega[b] = 0.0;
+  }
+  energy_.boundary_work += work;
+  time_ += duration;
 }
 
 void Solver::gather_shared_forces() {

@@ -32,9 +32,23 @@ std::vector<SpeedRun> quasi_static_speed_runs(const std::string& source_dir,
     return Plan{fmt::format("fixed_{:g}", v), fmt::format("fixed {:g} m/s", v),
                 fmt::format("--set stage[0].platen_velocity={:g}", v)};
   };
+  const auto implicit = [](int increments) {
+    return Plan{fmt::format("implicit_{}", increments),
+                fmt::format("implicit elastic start, {} increment{}, then fixed 5e-3 m/s",
+                            increments, increments > 1 ? "s" : ""),
+                fmt::format("--set stage[0].implicit_start=true "
+                            "--set stage[0].implicit_start_increments={}",
+                            increments)};
+  };
+  Plan implicit_adaptive = adaptive(5e-4);
+  implicit_adaptive.name = "implicit_adaptive";
+  implicit_adaptive.setting =
+      "implicit elastic start (10 increments), then " + implicit_adaptive.setting;
+  implicit_adaptive.set += " --set stage[0].implicit_start=true";
   // The reference first: every error is relative to it.
-  const std::vector<Plan> plans{fixed(1.25e-3), fixed(1e-2),    fixed(5e-3),   fixed(2.5e-3),
-                                adaptive(1e-3), adaptive(5e-4), adaptive(2e-4)};
+  const std::vector<Plan> plans{fixed(1.25e-3), fixed(1e-2),      fixed(5e-3),    fixed(2.5e-3),
+                                adaptive(1e-3), adaptive(5e-4),   adaptive(2e-4), implicit(1),
+                                implicit(10),   implicit_adaptive};
   std::vector<SpeedRun> runs;
   for (const Plan& p : plans) {
     const fs::path out = dir / p.name;

@@ -2,6 +2,7 @@
 // Wires a model file to a run: specimen -> model -> solver loop over the load path -> outputs.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,19 @@ struct RunOptions {
   bool progress = true;  // progress bar (terminal) or progress lines
 };
 
+// What the implicit elastic start of the first stage did (stage key implicit_start).
+struct ImplicitStart {
+  double reach = 0;         // m, platen displacement at the first contact's elastic limit
+  double displacement = 0;  // m, platen displacement of the jump
+  double stress = 0;        // Pa, axial stress of the linear response after the jump
+  double modulus = 0;       // Pa, Young's modulus of the linear response (plane-strain apparent)
+  double time = 0;          // s, stage time at which the platen program reaches the displacement
+  std::size_t dofs = 0, active_contacts = 0;
+  int passes = 0;
+  double solve_seconds = 0;
+  std::string limit;  // what ends the elastic regime, or which end condition capped the jump
+};
+
 struct RunSummary {
   int exit_code = 0;  // 0 finished, 3 stopped unstable, 4 step limit of the model file reached
   std::string status;
@@ -45,6 +59,7 @@ struct RunSummary {
   std::size_t zones = 0;  // of deformable blocks
   // Pa, zone-area-weighted mean stress of the specimen at the end (compression positive).
   double zone_stress_xx = 0, zone_stress_yy = 0, zone_stress_xy = 0;
+  std::optional<ImplicitStart> implicit_start;
 };
 
 RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& specimen,

@@ -86,9 +86,10 @@ struct ModelConfig {
   geometry::TessellationSettings tessellation;
   std::optional<std::filesystem::path> specimen_file;  // prepared specimen (vorodec build)
   int specimen_line = 0;                               // line of [specimen], for geometry errors
-  double density = 0;                                  // kg/m^3
-  DeformableSettings deformable;                       // [blocks] deformable, zone_size, E, nu
-  double rounding_length = 0;                          // m
+  std::string implicit_start_where;  // "file:line: key 'stage[0].implicit_start'", for run errors
+  double density = 0;                // kg/m^3
+  DeformableSettings deformable;     // [blocks] deformable, zone_size, E, nu
+  double rounding_length = 0;        // m
   LawChoice joints;  // specimen block to block (grain-based: the default intergranular law)
   std::optional<GrainConfig> grains;  // grain-based specimen
   LawChoice platens;                  // platen to specimen

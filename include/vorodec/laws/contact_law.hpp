@@ -81,6 +81,13 @@ struct StepContext {
   model::Zoning* zoning;  // gridpoints of the deformable blocks (contact sums zero before the step)
 };
 
+// A contact's springs as the implicit elastic start (solver/implicit_start) sees them.
+struct LinearSprings {
+  double kn, ks;  // N/m
+  // Carries no tension (an open or failed joint): it acts only while compressed.
+  bool unilateral;
+};
+
 // A new contact: bonded ones belong to the initial tessellation, others are frictional only.
 struct NewContact {
   std::uint64_t id;
@@ -111,6 +118,13 @@ class LawGroup {
   virtual double strain_energy(std::size_t i, double fn, double fs) const = 0;
   // Bytes of law state and properties per contact (memory accounting).
   virtual std::size_t bytes_per_contact() const = 0;
+  // The springs of local contact i in its current state; false if the law has no linear
+  // elastic regime (the implicit elastic start then refuses to run).
+  virtual bool linear_springs(std::size_t i, LinearSprings& out) const = 0;
+  // Largest factor s >= 0 such that forces (fn + s dfn, fs + s dfs) stay elastic in local
+  // contact i (no failure, slip or cut-off); infinity if they always do.
+  virtual double elastic_reach(std::size_t i, double fn, double fs, double dfn,
+                               double dfs) const = 0;
   // Sampled properties of local contact i, named by property_names() (for reports and files).
   virtual std::vector<double> properties(std::size_t i) const = 0;
   virtual std::span<const std::string_view> property_names() const = 0;

@@ -28,6 +28,19 @@ class LawGroupOf final : public LawGroup {
     return sizeof(typename Law::Props) + sizeof(typename Law::State);
   }
 
+  bool linear_springs(std::size_t i, LinearSprings& out) const override {
+    if constexpr (requires { Law::linear_springs(props_[i], state_[i]); }) {
+      out = Law::linear_springs(props_[i], state_[i]);
+      return true;
+    }
+    return false;
+  }
+  double elastic_reach(std::size_t i, double fn, double fs, double dfn, double dfs) const override {
+    if constexpr (requires { Law::elastic_reach(props_[i], state_[i], fn, fs, dfn, dfs); })
+      return Law::elastic_reach(props_[i], state_[i], fn, fs, dfn, dfs);
+    return 0.0;
+  }
+
   std::vector<double> properties(std::size_t i) const override {
     static_assert(sizeof(typename Law::Props) == Law::property_names.size() * sizeof(double));
     std::vector<double> v(Law::property_names.size());

@@ -3,6 +3,7 @@
 // shares nothing with Mohr-Coulomb but the LawGroup interface; useful for elastic verification.
 #include <algorithm>
 #include <array>
+#include <limits>
 
 #include "vorodec/laws/contact_law.hpp"
 
@@ -30,6 +31,10 @@ struct LinearElastic {
   static double max_stiffness(const Props& p) { return std::max(p.kn, p.ks); }
   static double strain_energy(const Props& p, double fn, double fs) {
     return 0.5 * (fn * fn / p.kn + (p.ks > 0.0 ? fs * fs / p.ks : 0.0));
+  }
+  static LinearSprings linear_springs(const Props& p, const State&) { return {p.kn, p.ks, false}; }
+  static double elastic_reach(const Props&, const State&, double, double, double, double) {
+    return std::numeric_limits<double>::infinity();
   }
   static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {
     st.fs -= p.ks * k.du_s;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "vorodec/laws/contact_law.hpp"
 
@@ -38,6 +39,33 @@ struct MohrCoulomb {
   static double max_stiffness(const Props& p) { return std::max(p.kn, p.ks); }
   static double strain_energy(const Props& p, double fn, double fs) {
     return 0.5 * (fn * fn / p.kn + (p.ks > 0.0 ? fs * fs / p.ks : 0.0));
+  }
+
+  // A failed joint has no tension; while intact it has its tensile strength.
+  static LinearSprings linear_springs(const Props& p, const State& st) {
+    return {p.kn, p.ks, st.broken};
+  }
+  // First factor at which the tension cut-off or either side of the Coulomb envelope
+  // |fs| <= c + fn tan(phi) (residual after failure) is reached along the linear path.
+  static double elastic_reach(const Props& p, const State& st, double fn, double fs, double dfn,
+                              double dfs) {
+    const double tension = st.broken ? 0.0 : p.tension_force;
+    const double c = st.broken ? 0.0 : p.cohesion_force;
+    const double t = st.broken ? p.tan_phi_res : p.tan_phi;
+    double reach = std::numeric_limits<double>::infinity();
+    // Each limit as a + s b <= 0: crossed at s = -a / b when b > 0, at once if already past.
+    const auto limit = [&](double a, double b) {
+      if (b > 0.0)
+        reach = std::min(reach, std::max(-a / b, 0.0));
+      else if (a > 0.0)
+        reach = 0.0;
+    };
+    limit(-(fn + tension), -dfn);
+    if (p.ks > 0.0) {
+      limit(fs - c - fn * t, dfs - dfn * t);
+      limit(-fs - c - fn * t, -dfs - dfn * t);
+    }
+    return reach;
   }
 
   static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {

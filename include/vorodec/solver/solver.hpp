@@ -46,6 +46,12 @@ class Solver {
   void initialise();
   // One explicit step; prescribed blocks move with the velocity already set in the model.
   void step();
+  // Moves every rigid block by (dx, dy, dtheta) m, m, rad at once, then updates the contacts as
+  // a step would whose increment is that displacement, without integrating: the implicit elastic
+  // start's jump. Adds the held blocks' work (trapezoid: the forces are linear along the jump),
+  // advances the time by `duration` s and leaves the free blocks at rest.
+  void displace(const std::vector<double>& dx, const std::vector<double>& dy,
+                const std::vector<double>& dtheta, double duration);
 
   double time() const { return time_; }
   double dt() const { return dt_; }
@@ -75,6 +81,7 @@ class Solver {
   void detect(bool bond_new);
   void compute_time_step();
   void partition();
+  void contact_forces();  // laws of every contact -> sums_ (and cracks_)
   void gather_shared_forces();
   void integrate();
   void integrate_gridpoints();

@@ -1,0 +1,238 @@
+#include "vorodec/solver/elastic_response.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "vorodec/model/contact_geometry.hpp"
+
+namespace vorodec::solver {
+
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+constexpr double regularisation = 1e-10;  // of the Jacobi-scaled diagonal (which is 1)
+
+// B maps a block's (ux, uy, theta) to the displacement of the contact point, which lies at
+// lever (rx, ry) from its centroid: B = [[1, 0, -ry], [0, 1, rx]].
+struct Lever {
+  double rx, ry;
+};
+
+// 3 x 3 block B_pᵀ D B_q of the contact stiffness, D = kn n nᵀ + ks s sᵀ (2 x 2, symmetric).
+std::array<std::array<double, 3>, 3> coupling(Lever p, Lever q, double dxx, double dxy,
+                                              double dyy) {
+  const double bp[2][3] = {{1, 0, -p.ry}, {0, 1, p.rx}};
+  const double bq[2][3] = {{1, 0, -q.ry}, {0, 1, q.rx}};
+  const double d[2][2] = {{dxx, dxy}, {dxy, dyy}};
+  std::array<std::array<double, 3>, 3> k{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) k[r][c] += bp[i][r] * d[i][j] * bq[j][c];
+  return k;
+}
+
+// A plain loop: Eigen's vectorised norm trips GCC 12's -Wmaybe-uninitialized under AVX-512.
+double norm(const Eigen::VectorXd& v) {
+  double s = 0.0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += v[i] * v[i];
+  return std::sqrt(s);
+}
+
+struct Linearised {
+  model::ContactFrame frame;
+  laws::LinearSprings springs;
+  std::size_t law, local;
+  Lever la, lb;
+};
+
+}  // namespace
+
+ElasticResponse elastic_response(const model::Model& model,
+                                 const std::vector<std::unique_ptr<laws::LawGroup>>& laws,
+                                 const std::vector<std::array<double, 3>>& unit) {
+  const auto& bl = model.blocks;
+  const std::size_t nb = bl.size(), nc = model.contacts.size();
+  std::vector<int> dof(nb, -1);
+  int n = 0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (bl.deformable[b])
+      throw ElasticResponseError(
+          "the implicit elastic start handles rigid blocks only (the specimen has deformable "
+          "ones)");
+    if (!bl.prescribed[b]) {
+      dof[b] = n;
+      n += 3;
+    }
+  }
+  // A touching contact with no tension (an unbonded platen) is closed within this gap.
+  const double touch = 1e-6 * model.rounding_length;
+  std::vector<Linearised> lin(nc);
+  std::vector<std::size_t> first(laws.size(), nc);
+  for (std::size_t i = 0; i < nc; ++i) {
+    const model::Contact& c = model.contacts[i];
+    Linearised& e = lin[i];
+    e.law = c.law;
+    first[e.law] = std::min(first[e.law], i);  // the contacts are grouped by law
+    e.local = i - first[e.law];
+    if (!laws[e.law]->linear_springs(e.local, e.springs))
+      throw ElasticResponseError(fmt::format(
+          "contact law '{}' has no linear elastic regime for the implicit elastic start",
+          laws[e.law]->name()));
+    model::Contact copy = c;
+    e.frame = model::contact_frame(bl.corners(), copy);
+    const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+    e.la = {e.frame.point.x - bl.x[a], e.frame.point.y - bl.y[a]};
+    e.lb = {e.frame.point.x - bl.x[b], e.frame.point.y - bl.y[b]};
+  }
+  std::vector<char> active(nc);
+  for (std::size_t i = 0; i < nc; ++i)
+    active[i] = !lin[i].springs.unilateral || model.contacts[i].gap <= touch;
+
+  ElasticResponse r;
+  r.dofs = static_cast<std::size_t>(n);
+  std::vector<double> q(static_cast<std::size_t>(n), 0.0);
+  // Displacement (ux, uy, theta) of block b in the unit case: solved or prescribed.
+  const auto u = [&](std::size_t b, int k) {
+    return dof[b] >= 0 ? q[static_cast<std::size_t>(dof[b] + k)]
+                       : unit[b][static_cast<std::size_t>(k)];
+  };
+  // Relative displacement of a's contact point with respect to b's, along n and along s.
+  const auto relative = [&](std::size_t i) {
+    const model::Contact& c = model.contacts[i];
+    const Linearised& e = lin[i];
+    const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+    const double dx = (u(a, 0) - e.la.ry * u(a, 2)) - (u(b, 0) - e.lb.ry * u(b, 2));
+    const double dy = (u(a, 1) + e.la.rx * u(a, 2)) - (u(b, 1) + e.lb.rx * u(b, 2));
+    const model::Point nv = e.frame.n;
+    return std::array<double, 2>{dx * nv.x + dy * nv.y, -dx * nv.y + dy * nv.x};
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  for (bool again = true; again && r.passes < 50;) {
+    ++r.passes;
+    std::vector<Eigen::Triplet<double, int>> triplets;
+    triplets.reserve(36 * nc + static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, 0.0);  // every diagonal is stored
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+    for (std::size_t i = 0; i < nc; ++i) {
+      if (!active[i]) continue;
+      const Linearised& e = lin[i];
+      const model::Point nv = e.frame.n, s{-nv.y, nv.x};
+      const double kn = e.springs.kn, ks = e.springs.ks;
+      const double dxx = kn * nv.x * nv.x + ks * s.x * s.x;
+      const double dxy = kn * nv.x * nv.y + ks * s.x * s.y;
+      const double dyy = kn * nv.y * nv.y + ks * s.y * s.y;
+      const std::size_t blk[2] = {static_cast<std::size_t>(model.contacts[i].a),
+                                  static_cast<std::size_t>(model.contacts[i].b)};
+      const Lever lever[2] = {e.la, e.lb};
+      for (int p = 0; p < 2; ++p) {
+        if (dof[blk[p]] < 0) continue;
+        for (int qs = 0; qs < 2; ++qs) {
+          const auto k = coupling(lever[p], lever[qs], dxx, dxy, dyy);
+          const double sign = p == qs ? 1.0 : -1.0;  // delta = B_a u_a - B_b u_b
+          for (int rr = 0; rr < 3; ++rr)
+            for (int cc = 0; cc < 3; ++cc) {
+              const double v = sign * k[static_cast<std::size_t>(rr)][static_cast<std::size_t>(cc)];
+              if (dof[blk[qs]] >= 0)
+                triplets.emplace_back(dof[blk[p]] + rr, dof[blk[qs]] + cc, v);
+              else
+                rhs[dof[blk[p]] + rr] -= v * unit[blk[qs]][static_cast<std::size_t>(cc)];
+            }
+        }
+      }
+    }
+    SparseMatrix k(n, n);
+    k.setFromTriplets(triplets.begin(), triplets.end());
+    // Jacobi scaling: rotations (rad) and translations (m) differ by a block size squared.
+    Eigen::VectorXd scale(n);
+    for (int i = 0; i < n; ++i) {
+      const double d = k.coeff(i, i);
+      scale[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
+    }
+    SparseMatrix ks = scale.asDiagonal() * k * scale.asDiagonal();
+    // A shift of the scaled diagonal keeps the free rigid motions of the specimen (frictionless
+    // platens leave its sideways translation free) from making K singular. The load does no
+    // work on such a motion, so its amplitude stays at round-off and it moves no force.
+    for (int i = 0; i < n; ++i)
+      ks.coeffRef(i, i) = k.coeff(i, i) > 0.0 ? ks.coeff(i, i) + regularisation : 1.0;
+    Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> chol;
+    // Simplicial: no BLAS, whose threads could change the round-off with the thread count.
+    chol.setMode(Eigen::CholmodSimplicialLLt);
+    chol.compute(ks);
+    if (chol.info() != Eigen::Success)
+      throw ElasticResponseError(
+          "the contact stiffness is not positive definite: some block is not held by its "
+          "contacts (a mechanism), so it has no static elastic response");
+    const Eigen::VectorXd y = chol.solve(scale.cwiseProduct(rhs));
+    const Eigen::VectorXd x = scale.cwiseProduct(y);
+    const Eigen::VectorXd res = k * x - rhs;
+    const double residual = norm(res), size = std::max(norm(rhs), 1e-300);
+    double largest = 0.0;
+    for (int i = 0; i < n; ++i) {
+      q[static_cast<std::size_t>(i)] = x[i];
+      largest = std::max(largest, std::abs(x[i]));  // NaN compares false: caught below
+    }
+    // A loaded mechanism moves by load / regularisation: far beyond anything elastic.
+    if (!(residual <= 1e-6 * size) || !(largest <= 1e3) || !std::isfinite(largest))
+      throw ElasticResponseError(fmt::format(
+          "the contact stiffness is singular (relative residual {:.2g}, largest displacement "
+          "{:.2g} m per m of platen): some block is not held by its contacts (a mechanism), so "
+          "it has no static elastic response",
+          residual / size, largest));
+    // A unilateral contact that the unit case would pull leaves the system; solve again.
+    again = false;
+    for (std::size_t i = 0; i < nc; ++i)
+      if (active[i] && lin[i].springs.unilateral && relative(i)[0] > 0.0) {
+        active[i] = 0;
+        again = true;
+      }
+  }
+  r.factorise_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  r.ux.resize(nb);
+  r.uy.resize(nb);
+  r.utheta.resize(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    r.ux[b] = u(b, 0);
+    r.uy[b] = u(b, 1);
+    r.utheta[b] = u(b, 2);
+  }
+  r.dfn.assign(nc, 0.0);
+  r.dfs.assign(nc, 0.0);
+  r.force.assign(nb, {0.0, 0.0, 0.0});
+  for (std::size_t i = 0; i < nc; ++i) {
+    const model::Contact& c = model.contacts[i];
+    const auto [dn, ds] = relative(i);
+    double reach = std::numeric_limits<double>::infinity();
+    if (active[i]) {
+      ++r.active_contacts;
+      r.dfn[i] = -lin[i].springs.kn * dn;  // opening (dn > 0) lowers the compression
+      r.dfs[i] = -lin[i].springs.ks * ds;
+      const model::Point nv = lin[i].frame.n;
+      const double fx = r.dfn[i] * nv.x - r.dfs[i] * nv.y, fy = r.dfn[i] * nv.y + r.dfs[i] * nv.x;
+      const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+      r.force[a][0] += fx;
+      r.force[a][1] += fy;
+      r.force[a][2] += lin[i].la.rx * fy - lin[i].la.ry * fx;
+      r.force[b][0] -= fx;
+      r.force[b][1] -= fy;
+      r.force[b][2] -= lin[i].lb.rx * fy - lin[i].lb.ry * fx;
+      reach = laws[lin[i].law]->elastic_reach(lin[i].local, c.fn, c.fs, r.dfn[i], r.dfs[i]);
+    } else if (dn < 0.0) {  // an open contact closes: the stiffness changes there
+      reach = std::max(c.gap - touch, 0.0) / -dn;
+    }
+    if (reach < r.reach) {
+      r.reach = reach;
+      r.limiting_contact = i;
+    }
+  }
+  return r;
+}
+
+}  // namespace vorodec::solver
