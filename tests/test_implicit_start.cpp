@@ -163,3 +163,19 @@ TEST(ImplicitStart, MisplacedOrInvalidKeysAreRejectedWithTheirLine) {
       << o.output;
   EXPECT_NE(o.output.find("only the first stage"), std::string::npos) << o.output;
 }
+
+TEST(ImplicitStart, GivesTheSameRunOnOneAndTwoThreads) {
+  const fs::path one = out_dir("implicit_one_thread"), two = out_dir("implicit_two_threads");
+  for (const auto& [dir, threads] : {std::pair{one, 1}, std::pair{two, 2}}) {
+    const auto o =
+        run_capture("run " + small_model + " --no-vtk --threads " + std::to_string(threads) +
+                    " --out " + dir.string() + " --set stage[0].implicit_start=true");
+    ASSERT_EQ(o.code, 0) << o.output;
+  }
+  const auto read = [](const fs::path& f) {
+    std::ifstream in(f);
+    return std::string{std::istreambuf_iterator<char>(in), {}};
+  };
+  EXPECT_EQ(read(one / "history.csv"), read(two / "history.csv"));
+  EXPECT_EQ(read(one / "cracks.csv"), read(two / "cracks.csv"));
+}
