@@ -144,6 +144,10 @@ TEST(ImplicitStart, MisplacedOrInvalidKeysAreRejectedWithTheirLine) {
   o = run_capture(base + " --set stage[0].implicit_start=true --set loading.confining_stress=1e6");
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find("confining_stress = 0"), std::string::npos) << o.output;
+  o = run_capture("check " + std::string(VORODEC_SOURCE_DIR) +
+                  "/models/cyclic_marble.toml --set stage[0].implicit_start=true");
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find("not a cyclic block"), std::string::npos) << o.output;
   // A second stage may not start implicitly: it does not start from rest.
   std::ifstream in(small_model);
   std::string text{std::istreambuf_iterator<char>(in), {}};

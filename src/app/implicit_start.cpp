@@ -53,8 +53,10 @@ ImplicitStart implicit_start(model::Model& model, solver::Solver& solver,
       s.modulus = stress_per_m * boundary.height();
       if (r.limiting_contact < model.contacts.size()) {
         const model::Contact& c = model.contacts[r.limiting_contact];
-        s.limit =
-            fmt::format("first contact out of its elastic regime: blocks {} and {}", c.a, c.b);
+        s.limit = fmt::format("{}: blocks {} and {}",
+                              r.limit_is_closing ? "an open contact closes"
+                                                 : "first contact out of its elastic regime",
+                              c.a, c.b);
       }
       total = fraction * r.reach;
       // The jump stops short of the stage's own end, so the stage still ends by its steps.

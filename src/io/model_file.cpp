@@ -337,6 +337,8 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
   const std::string vel = "platen_velocity";
   const std::string control = sec.string("control", &vel);
   if (control == "cyclic") {
+    if (sec.has("implicit_start"))
+      sec.fail("implicit_start", "needs a velocity stage, not a cyclic block");
     const std::string cycle = "cycle";
     loading::append_cycles(read_cycles(sec, sec.string("name", &cycle)), stages);
     sec.finish();

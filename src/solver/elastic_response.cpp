@@ -230,6 +230,7 @@ ElasticResponse elastic_response(const model::Model& model,
     if (reach < r.reach) {
       r.reach = reach;
       r.limiting_contact = i;
+      r.limit_is_closing = !active[i];
     }
   }
   return r;

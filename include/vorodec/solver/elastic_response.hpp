@@ -35,6 +35,7 @@ struct ElasticResponse {
   // no open contact closes and no active one opens; the contact that sets it.
   double reach = std::numeric_limits<double>::infinity();
   std::size_t limiting_contact = std::numeric_limits<std::size_t>::max();
+  bool limit_is_closing = false;  // the limiting contact is an open one that closes
   std::size_t dofs = 0;
   std::size_t active_contacts = 0;
   int passes = 0;                // solves: open contacts that would pull are dropped, then again
