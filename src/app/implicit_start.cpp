@@ -23,8 +23,8 @@ double program_time(double d, double v, double ramp) {
 }  // namespace
 
 ImplicitStart implicit_start(model::Model& model, solver::Solver& solver,
-                             const loading::SpecimenBoundary& boundary,
-                             const loading::Stage& stage) {
+                             const loading::SpecimenBoundary& boundary, const loading::Stage& stage,
+                             double confining_stress) {
   auto& bl = model.blocks;
   const std::size_t nb = bl.size();
   const auto top = static_cast<std::size_t>(boundary.top_platen());
@@ -36,60 +36,97 @@ ImplicitStart implicit_start(model::Model& model, solver::Solver& solver,
   const int increments = stage.implicit_start_increments;
   ImplicitStart s;
   solver::ElasticResponse r;
-  double done = 0.0, total = 0.0, time = 0.0;
+  double done = 0.0, total = 0.0, time = 0.0, load_done = 0.0;
   const double v = stage.platen_velocity;
-  for (int k = 0; k < increments; ++k) {
-    model::refresh_world(model);
-    r = solver::elastic_response(model, solver.laws(), unit);
-    s.passes += r.passes;
-    s.solve_seconds += r.factorise_seconds;
-    // Axial stress per metre of platen displacement, as measure_specimen takes it.
-    const double stress_per_m =
-        (r.force[top][1] - r.force[bottom][1]) / (2.0 * boundary.width() * model.thickness);
-    if (k == 0) {
-      s.dofs = r.dofs;
-      s.active_contacts = r.active_contacts;
-      s.reach = r.reach;
-      s.modulus = stress_per_m * boundary.height();
-      if (r.limiting_contact < model.contacts.size()) {
-        const model::Contact& c = model.contacts[r.limiting_contact];
-        s.limit = fmt::format("{}: blocks {} and {}",
-                              r.limit_is_closing ? "an open contact closes"
-                                                 : "first contact out of its elastic regime",
-                              c.a, c.b);
+  std::vector<std::array<double, 3>> load(nb);
+  // Each open contact that closes on the way costs one more solve (it enters K there).
+  const int most_solves = increments + 200;
+  int solves = 0;
+  // Phase 0 applies the confinement with the platens held, as the explicit steps do before the
+  // platen has moved; phase 1 moves the platen. One driver per phase keeps the active set exact.
+  for (int phase = confining_stress != 0.0 ? 0 : 1; phase < 2; ++phase)
+    for (int k = 0, phase_solves = 0; k < increments && phase_solves < most_solves;
+         ++solves, ++phase_solves) {
+      model::refresh_world(model);
+      // Load case: the confining traction on the lateral edges as they now lie (follower load).
+      boundary.apply_confinement(model, confining_stress);
+      for (std::size_t b = 0; b < nb; ++b) load[b] = {bl.fx[b], bl.fy[b], bl.moment[b]};
+      r = solver::elastic_response(model, solver.laws(), unit, load,
+                                   phase == 0 ? 1.0 - load_done : 0.0);
+      s.passes += r.passes;
+      s.solve_seconds += r.factorise_seconds;
+      // Axial stress per metre of platen displacement, as measure_specimen takes it.
+      const auto axial = [&](const solver::ElasticCase& c) {
+        return (c.force[top][1] - c.force[bottom][1]) / (2.0 * boundary.width() * model.thickness);
+      };
+      const double stress_per_m = axial(r.unit);
+      if (solves == 0) {
+        if (r.load_reach < 1.0)
+          throw solver::ElasticResponseError(fmt::format(
+              "the confining stress alone takes a contact out of its elastic regime (at {:.3g} of "
+              "it): start without implicit_start",
+              r.load_reach));
+        s.dofs = r.dofs;
+        s.active_contacts = r.active_contacts;
+        s.reach = r.reach;
+        s.modulus = stress_per_m * boundary.height();
+        if (r.limiting_contact < model.contacts.size()) {
+          const model::Contact& c = model.contacts[r.limiting_contact];
+          s.limit =
+              fmt::format("first contact out of its elastic regime: blocks {} and {}", c.a, c.b);
+        }
+        total = fraction * r.reach;
+        // The jump stops short of the stage's own end, so the stage still ends by its steps.
+        const loading::StageEnd& end = stage.end;
+        if (!std::isnan(end.axial_strain) && end.axial_strain > 0.0 &&
+            fraction * end.axial_strain * boundary.height() < total) {
+          total = fraction * end.axial_strain * boundary.height();
+          s.limit = "end_axial_strain";
+        }
+        const double cap_stress = (end.axial_stress - axial(r.load)) / stress_per_m;
+        if (!std::isnan(end.axial_stress) && end.axial_stress > 0.0 && stress_per_m > 0.0 &&
+            fraction * cap_stress < total) {
+          total = std::max(fraction * cap_stress, 0.0);
+          s.limit = "end_axial_stress";
+        }
+        if (!std::isfinite(total))
+          throw solver::ElasticResponseError(
+              "nothing limits the implicit elastic start: no contact ever leaves its elastic "
+              "regime and the stage has no end_axial_strain or end_axial_stress");
       }
-      total = fraction * r.reach;
-      // The jump stops short of the stage's own end, so the stage still ends by its steps.
-      const loading::StageEnd& end = stage.end;
-      if (!std::isnan(end.axial_strain) && end.axial_strain > 0.0 &&
-          fraction * end.axial_strain * boundary.height() < total) {
-        total = fraction * end.axial_strain * boundary.height();
-        s.limit = "end_axial_strain";
+      // Equal parts of what is left of the load (phase 0) or of the platen's way, the platen's
+      // within the elastic reach from here (phase 1).
+      const double left = increments - k;
+      double d = phase == 1 ? std::min((total - done) / left, fraction * r.reach) : 0.0;
+      double part = phase == 0 ? (1.0 - load_done) / left : 0.0;
+      // Stopped where the first open contact closes: it enters K at the next solve.
+      double scale = 1.0;
+      for (std::size_t i = 0; i < model.contacts.size(); ++i) {
+        const double gap = model.contacts[i].gap, dn = part * r.load.dn[i] + d * r.unit.dn[i];
+        if (!r.active[i] && gap > r.touch && dn < 0.0 && gap + dn < r.touch)
+          scale = std::min(scale, (gap - 0.5 * r.touch) / -dn);
       }
-      if (!std::isnan(end.axial_stress) && end.axial_stress > 0.0 && stress_per_m > 0.0 &&
-          fraction * end.axial_stress / stress_per_m < total) {
-        total = fraction * end.axial_stress / stress_per_m;
-        s.limit = "end_axial_stress";
+      if (scale < 1.0) {
+        d *= scale;
+        part *= scale;
+        ++s.closings;
+      } else {
+        ++k;
       }
-      if (!std::isfinite(total))
-        throw solver::ElasticResponseError(
-            "nothing limits the implicit elastic start: no contact ever leaves its elastic "
-            "regime and the stage has no end_axial_strain or end_axial_stress");
+      std::vector<double> dx(nb), dy(nb), dt(nb);
+      for (std::size_t b = 0; b < nb; ++b) {
+        dx[b] = d * r.unit.ux[b] + part * r.load.ux[b];
+        dy[b] = d * r.unit.uy[b] + part * r.load.uy[b];
+        dt[b] = d * r.unit.utheta[b] + part * r.load.utheta[b];
+      }
+      const double t = program_time(done + d, v, stage.ramp_time);
+      solver.displace(dx, dy, dt, t - time);
+      done += d;
+      load_done += part;
+      time = t;
+      s.stress += stress_per_m * d + part * axial(r.load);
+      s.solves = solves + 1;
     }
-    // Equal parts of what is left, each within the elastic reach from where it starts.
-    const double d = std::min((total - done) / (increments - k), fraction * r.reach);
-    std::vector<double> dx(nb), dy(nb), dt(nb);
-    for (std::size_t b = 0; b < nb; ++b) {
-      dx[b] = d * r.ux[b];
-      dy[b] = d * r.uy[b];
-      dt[b] = d * r.utheta[b];
-    }
-    const double t = program_time(done + d, v, stage.ramp_time);
-    solver.displace(dx, dy, dt, t - time);
-    done += d;
-    time = t;
-    s.stress += stress_per_m * d;
-  }
   s.displacement = done;
   s.time = time;
   // The blocks go on moving as the linear response does at the platen's speed: no start-up wave.
@@ -97,9 +134,9 @@ ImplicitStart implicit_start(model::Model& model, solver::Solver& solver,
       stage.ramp_time > 0.0 && time < stage.ramp_time ? v * time / stage.ramp_time : v;
   for (std::size_t b = 0; b < nb; ++b) {
     if (bl.prescribed[b]) continue;
-    bl.vx[b] = speed * r.ux[b];
-    bl.vy[b] = speed * r.uy[b];
-    bl.omega[b] = speed * r.utheta[b];
+    bl.vx[b] = speed * r.unit.ux[b];
+    bl.vy[b] = speed * r.unit.uy[b];
+    bl.omega[b] = speed * r.unit.utheta[b];
   }
   return s;
 }

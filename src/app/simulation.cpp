@@ -258,10 +258,10 @@ std::string implicit_json(const std::optional<ImplicitStart>& i) {
       ",\n  \"implicit_start\": {{\"platen_displacement_m\": {:.8g}, "
       "\"elastic_reach_m\": {:.8g}, \"axial_stress_Pa\": {:.8g}, "
       "\"linear_youngs_modulus_Pa\": {:.8g}, \"stage_time_s\": {:.8g}, \"dofs\": {}, "
-      "\"active_contacts\": {}, \"solves\": {}, \"solve_wall_time_s\": {:.4f}, "
-      "\"limit\": \"{}\"}}",
+      "\"active_contacts\": {}, \"solves\": {}, \"closings\": {}, \"factorisations\": {}, "
+      "\"solve_wall_time_s\": {:.4f}, \"limit\": \"{}\"}}",
       i->displacement, i->reach, i->stress, i->modulus, i->time, i->dofs, i->active_contacts,
-      i->passes, i->solve_seconds, i->limit);
+      i->solves, i->closings, i->passes, i->solve_seconds, i->limit);
 }
 
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,
@@ -438,7 +438,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
       record(st.name + ":start");
       if (st.implicit_start) {
         try {
-          summary.implicit_start = implicit_start(model, solver, boundary, st);
+          summary.implicit_start = implicit_start(model, solver, boundary, st, sigma3);
         } catch (const solver::ElasticResponseError& e) {
           throw io::ModelFileError(fmt::format("{}: {}", cfg.implicit_start_where, e.what()),
                                    fmt::format("stage[{}].implicit_start", si), e.what());

@@ -303,8 +303,8 @@ loading::AdaptiveVelocity read_adaptive(TomlSection sec, double v0) {
 }
 
 // One [[stage]] table: a single stage, or a cyclic block expanded into its stages.
-// stage key implicit_start: the first velocity stage of an unconfined rigid-block model, loaded
-// from rest by compression (app/implicit_start).
+// stage key implicit_start: the first velocity stage of a rigid-block model without gravity,
+// loaded from rest by compression (app/implicit_start).
 void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, ModelConfig& cfg) {
   st.implicit_start = sec.boolean("implicit_start", false);
   if (!st.implicit_start) {
@@ -315,8 +315,6 @@ void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, Model
   if (!first) sec.fail("implicit_start", "only the first stage can start implicitly (from rest)");
   if (st.control != loading::Control::platen_velocity || st.platen_velocity <= 0)
     sec.fail("implicit_start", "needs a compressing velocity stage (platen_velocity > 0)");
-  if (cfg.load_path.confining_stress != 0)
-    sec.fail("implicit_start", "needs [loading] confining_stress = 0");
   if (cfg.solver.gravity.x != 0 || cfg.solver.gravity.y != 0)
     sec.fail("implicit_start", "needs [solver] gravity = [0, 0]");
   if (cfg.deformable.enabled) sec.fail("implicit_start", "needs rigid blocks");

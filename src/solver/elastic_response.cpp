@@ -55,7 +55,8 @@ struct Linearised {
 
 ElasticResponse elastic_response(const model::Model& model,
                                  const std::vector<std::unique_ptr<laws::LawGroup>>& laws,
-                                 const std::vector<std::array<double, 3>>& unit) {
+                                 const std::vector<std::array<double, 3>>& unit,
+                                 const std::vector<std::array<double, 3>>& load, double load_left) {
   const auto& bl = model.blocks;
   const std::size_t nb = bl.size(), nc = model.contacts.size();
   std::vector<int> dof(nb, -1);
@@ -96,19 +97,26 @@ ElasticResponse elastic_response(const model::Model& model,
 
   ElasticResponse r;
   r.dofs = static_cast<std::size_t>(n);
-  std::vector<double> q(static_cast<std::size_t>(n), 0.0);
-  // Displacement (ux, uy, theta) of block b in the unit case: solved or prescribed.
-  const auto u = [&](std::size_t b, int k) {
-    return dof[b] >= 0 ? q[static_cast<std::size_t>(dof[b] + k)]
-                       : unit[b][static_cast<std::size_t>(k)];
+  bool loaded = false;
+  for (std::size_t b = 0; b < nb; ++b)
+    loaded |= dof[b] >= 0 && (load[b][0] != 0.0 || load[b][1] != 0.0 || load[b][2] != 0.0);
+  const int cases = loaded ? 2 : 1;
+  // Case 0: the unit displacement of the held blocks; case 1: the applied loads, held blocks still.
+  std::array<std::vector<double>, 2> q;
+  q[0].assign(static_cast<std::size_t>(n), 0.0);
+  q[1].assign(static_cast<std::size_t>(n), 0.0);
+  // Displacement (ux, uy, theta) of block b in a case: solved or prescribed.
+  const auto u = [&](int lc, std::size_t b, int k) {
+    if (dof[b] >= 0) return q[static_cast<std::size_t>(lc)][static_cast<std::size_t>(dof[b] + k)];
+    return lc == 0 ? unit[b][static_cast<std::size_t>(k)] : 0.0;
   };
   // Relative displacement of a's contact point with respect to b's, along n and along s.
-  const auto relative = [&](std::size_t i) {
+  const auto relative = [&](int lc, std::size_t i) {
     const model::Contact& c = model.contacts[i];
     const Linearised& e = lin[i];
     const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-    const double dx = (u(a, 0) - e.la.ry * u(a, 2)) - (u(b, 0) - e.lb.ry * u(b, 2));
-    const double dy = (u(a, 1) + e.la.rx * u(a, 2)) - (u(b, 1) + e.lb.rx * u(b, 2));
+    const double dx = (u(lc, a, 0) - e.la.ry * u(lc, a, 2)) - (u(lc, b, 0) - e.lb.ry * u(lc, b, 2));
+    const double dy = (u(lc, a, 1) + e.la.rx * u(lc, a, 2)) - (u(lc, b, 1) + e.lb.rx * u(lc, b, 2));
     const model::Point nv = e.frame.n;
     return std::array<double, 2>{dx * nv.x + dy * nv.y, -dx * nv.y + dy * nv.x};
   };
@@ -118,7 +126,10 @@ ElasticResponse elastic_response(const model::Model& model,
     std::vector<Eigen::Triplet<double, int>> triplets;
     triplets.reserve(36 * nc + static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, 0.0);  // every diagonal is stored
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+    std::array<Eigen::VectorXd, 2> rhs{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+    for (std::size_t b = 0; b < nb; ++b)
+      if (dof[b] >= 0)
+        for (int k = 0; k < 3; ++k) rhs[1][dof[b] + k] = load[b][static_cast<std::size_t>(k)];
     for (std::size_t i = 0; i < nc; ++i) {
       if (!active[i]) continue;
       const Linearised& e = lin[i];
@@ -141,7 +152,7 @@ ElasticResponse elastic_response(const model::Model& model,
               if (dof[blk[qs]] >= 0)
                 triplets.emplace_back(dof[blk[p]] + rr, dof[blk[qs]] + cc, v);
               else
-                rhs[dof[blk[p]] + rr] -= v * unit[blk[qs]][static_cast<std::size_t>(cc)];
+                rhs[0][dof[blk[p]] + rr] -= v * unit[blk[qs]][static_cast<std::size_t>(cc)];
             }
         }
       }
@@ -168,26 +179,30 @@ ElasticResponse elastic_response(const model::Model& model,
       throw ElasticResponseError(
           "the contact stiffness is not positive definite: some block is not held by its "
           "contacts (a mechanism), so it has no static elastic response");
-    const Eigen::VectorXd y = chol.solve(scale.cwiseProduct(rhs));
-    const Eigen::VectorXd x = scale.cwiseProduct(y);
-    const Eigen::VectorXd res = k * x - rhs;
-    const double residual = norm(res), size = std::max(norm(rhs), 1e-300);
-    double largest = 0.0;
-    for (int i = 0; i < n; ++i) {
-      q[static_cast<std::size_t>(i)] = x[i];
-      largest = std::max(largest, std::abs(x[i]));  // NaN compares false: caught below
+    for (int lc = 0; lc < cases; ++lc) {
+      const Eigen::VectorXd y = chol.solve(scale.cwiseProduct(rhs[static_cast<std::size_t>(lc)]));
+      const Eigen::VectorXd x = scale.cwiseProduct(y);
+      const Eigen::VectorXd res = k * x - rhs[static_cast<std::size_t>(lc)];
+      const double residual = norm(res);
+      const double size = std::max(norm(rhs[static_cast<std::size_t>(lc)]), 1e-300);
+      double largest = 0.0;
+      for (int i = 0; i < n; ++i) {
+        q[static_cast<std::size_t>(lc)][static_cast<std::size_t>(i)] = x[i];
+        largest = std::max(largest, std::abs(x[i]));  // NaN compares false: caught below
+      }
+      // A loaded mechanism moves by load / regularisation: far beyond anything elastic.
+      if (!(residual <= 1e-6 * size) || !(largest <= 1e3) || !std::isfinite(largest))
+        throw ElasticResponseError(fmt::format(
+            "the contact stiffness is singular (relative residual {:.2g}, largest displacement "
+            "{:.2g} m): some block is not held by its contacts (a mechanism), so it has no "
+            "static elastic response",
+            residual / size, largest));
     }
-    // A loaded mechanism moves by load / regularisation: far beyond anything elastic.
-    if (!(residual <= 1e-6 * size) || !(largest <= 1e3) || !std::isfinite(largest))
-      throw ElasticResponseError(fmt::format(
-          "the contact stiffness is singular (relative residual {:.2g}, largest displacement "
-          "{:.2g} m per m of platen): some block is not held by its contacts (a mechanism), so "
-          "it has no static elastic response",
-          residual / size, largest));
-    // A unilateral contact that the unit case would pull leaves the system; solve again.
+    // A unilateral contact that the case being applied would pull leaves the system; solve again.
     again = false;
+    const int applied = loaded && load_left > 0.0 ? 1 : 0;
     for (std::size_t i = 0; i < nc; ++i)
-      if (active[i] && lin[i].springs.unilateral && relative(i)[0] > 0.0) {
+      if (active[i] && lin[i].springs.unilateral && relative(applied, i)[0] > 0.0) {
         active[i] = 0;
         again = true;
       }
@@ -195,44 +210,58 @@ ElasticResponse elastic_response(const model::Model& model,
   r.factorise_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  r.ux.resize(nb);
-  r.uy.resize(nb);
-  r.utheta.resize(nb);
-  for (std::size_t b = 0; b < nb; ++b) {
-    r.ux[b] = u(b, 0);
-    r.uy[b] = u(b, 1);
-    r.utheta[b] = u(b, 2);
-  }
-  r.dfn.assign(nc, 0.0);
-  r.dfs.assign(nc, 0.0);
-  r.force.assign(nb, {0.0, 0.0, 0.0});
-  for (std::size_t i = 0; i < nc; ++i) {
-    const model::Contact& c = model.contacts[i];
-    const auto [dn, ds] = relative(i);
-    double reach = std::numeric_limits<double>::infinity();
-    if (active[i]) {
-      ++r.active_contacts;
-      r.dfn[i] = -lin[i].springs.kn * dn;  // opening (dn > 0) lowers the compression
-      r.dfs[i] = -lin[i].springs.ks * ds;
-      const model::Point nv = lin[i].frame.n;
-      const double fx = r.dfn[i] * nv.x - r.dfs[i] * nv.y, fy = r.dfn[i] * nv.y + r.dfs[i] * nv.x;
-      const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-      r.force[a][0] += fx;
-      r.force[a][1] += fy;
-      r.force[a][2] += lin[i].la.rx * fy - lin[i].la.ry * fx;
-      r.force[b][0] -= fx;
-      r.force[b][1] -= fy;
-      r.force[b][2] -= lin[i].lb.rx * fy - lin[i].lb.ry * fx;
-      reach = laws[lin[i].law]->elastic_reach(lin[i].local, c.fn, c.fs, r.dfn[i], r.dfs[i]);
-    } else if (dn < 0.0) {  // an open contact closes: the stiffness changes there
-      reach = std::max(c.gap - touch, 0.0) / -dn;
+  for (ElasticCase* ec : {&r.unit, &r.load}) {
+    const int lc = ec == &r.unit ? 0 : 1;
+    ec->ux.resize(nb);
+    ec->uy.resize(nb);
+    ec->utheta.resize(nb);
+    for (std::size_t b = 0; b < nb; ++b) {
+      ec->ux[b] = u(lc, b, 0);
+      ec->uy[b] = u(lc, b, 1);
+      ec->utheta[b] = u(lc, b, 2);
     }
+    ec->dfn.assign(nc, 0.0);
+    ec->dfs.assign(nc, 0.0);
+    ec->dn.assign(nc, 0.0);
+    ec->force.assign(nb, {0.0, 0.0, 0.0});
+    for (std::size_t i = 0; i < nc; ++i) {
+      if (!active[i]) continue;
+      const model::Contact& c = model.contacts[i];
+      const auto [dn, ds] = relative(lc, i);
+      ec->dfn[i] = -lin[i].springs.kn * dn;  // opening (dn > 0) lowers the compression
+      ec->dfs[i] = -lin[i].springs.ks * ds;
+      const model::Point nv = lin[i].frame.n;
+      const double fx = ec->dfn[i] * nv.x - ec->dfs[i] * nv.y;
+      const double fy = ec->dfn[i] * nv.y + ec->dfs[i] * nv.x;
+      const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+      ec->force[a][0] += fx;
+      ec->force[a][1] += fy;
+      ec->force[a][2] += lin[i].la.rx * fy - lin[i].la.ry * fx;
+      ec->force[b][0] -= fx;
+      ec->force[b][1] -= fy;
+      ec->force[b][2] -= lin[i].lb.rx * fy - lin[i].lb.ry * fx;
+    }
+  }
+  // The elastic reaches: of what is left of the load case from the current forces, then of the
+  // unit case from the current forces plus that.
+  for (std::size_t i = 0; i < nc; ++i) {
+    r.unit.dn[i] = relative(0, i)[0];
+    r.load.dn[i] = loaded ? relative(1, i)[0] : 0.0;
+    if (!active[i]) continue;
+    ++r.active_contacts;
+    const model::Contact& c = model.contacts[i];
+    const laws::LawGroup& law = *laws[lin[i].law];
+    const std::size_t j = lin[i].local;
+    const double fn = load_left * r.load.dfn[i], fs = load_left * r.load.dfs[i];
+    if (loaded) r.load_reach = std::min(r.load_reach, law.elastic_reach(j, c.fn, c.fs, fn, fs));
+    const double reach = law.elastic_reach(j, c.fn + fn, c.fs + fs, r.unit.dfn[i], r.unit.dfs[i]);
     if (reach < r.reach) {
       r.reach = reach;
       r.limiting_contact = i;
-      r.limit_is_closing = !active[i];
     }
   }
+  r.active = std::move(active);
+  r.touch = touch;
   return r;
 }
 

@@ -221,6 +221,8 @@ void Solver::displace(const std::vector<double>& dx, const std::vector<double>& 
   for (std::size_t b = 0; b < nb; ++b) {
     if (bl.prescribed[b])  // minus the force the specimen exerts on it, before the jump
       work -= 0.5 * (sums_[b].fx * dx[b] + sums_[b].fy * dy[b] + sums_[b].m * dtheta[b]);
+    else  // applied loads (confinement) are constant along the jump
+      work += bl.fx[b] * dx[b] + bl.fy[b] * dy[b] + bl.moment[b] * dtheta[b];
     bl.x[b] += dx[b];
     bl.y[b] += dy[b];
     bl.theta[b] += dtheta[b];

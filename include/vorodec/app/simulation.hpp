@@ -34,13 +34,15 @@ struct RunOptions {
 
 // What the implicit elastic start of the first stage did (stage key implicit_start).
 struct ImplicitStart {
-  double reach = 0;         // m, platen displacement at the first contact's elastic limit
+  double reach = 0;  // m, platen displacement at the first contact's elastic limit (first solve)
   double displacement = 0;  // m, platen displacement of the jump
   double stress = 0;        // Pa, axial stress of the linear response after the jump
   double modulus = 0;       // Pa, Young's modulus of the linear response (plane-strain apparent)
   double time = 0;          // s, stage time at which the platen program reaches the displacement
   std::size_t dofs = 0, active_contacts = 0;
-  int passes = 0;
+  int solves = 0;    // solve steps: the increments plus one per closing
+  int closings = 0;  // steps cut short where an open contact closed
+  int passes = 0;    // factorisations (a solve refactorises when it drops a pulled contact)
   double solve_seconds = 0;
   std::string limit;  // what ends the elastic regime, or which end condition capped the jump
 };

@@ -48,8 +48,9 @@ class Solver {
   void step();
   // Moves every rigid block by (dx, dy, dtheta) m, m, rad at once, then updates the contacts as
   // a step would whose increment is that displacement, without integrating: the implicit elastic
-  // start's jump. Adds the held blocks' work (trapezoid: the forces are linear along the jump),
-  // advances the time by `duration` s and leaves the free blocks at rest.
+  // start's jump. Adds the held blocks' work (trapezoid: the forces are linear along the jump) and
+  // the applied loads' (Blocks::fx, fy, moment, held constant), advances the time by `duration` s
+  // and leaves the free blocks at rest.
   void displace(const std::vector<double>& dx, const std::vector<double>& dy,
                 const std::vector<double>& dtheta, double duration);
 
