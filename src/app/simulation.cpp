@@ -256,12 +256,14 @@ std::string implicit_json(const std::optional<ImplicitStart>& i) {
   if (!i) return "";
   return fmt::format(
       ",\n  \"implicit_start\": {{\"platen_displacement_m\": {:.8g}, "
-      "\"elastic_reach_m\": {:.8g}, \"axial_stress_Pa\": {:.8g}, "
+      "\"elastic_reach_m\": {}, \"axial_stress_Pa\": {:.8g}, "
       "\"linear_youngs_modulus_Pa\": {:.8g}, \"stage_time_s\": {:.8g}, \"dofs\": {}, "
       "\"active_contacts\": {}, \"solves\": {}, \"closings\": {}, \"factorisations\": {}, "
       "\"solve_wall_time_s\": {:.4f}, \"limit\": \"{}\"}}",
-      i->displacement, i->reach, i->stress, i->modulus, i->time, i->dofs, i->active_contacts,
-      i->solves, i->closings, i->passes, i->solve_seconds, i->limit);
+      // JSON has no infinity: a reach nothing limits (no contact loaded yet) is null.
+      i->displacement, std::isfinite(i->reach) ? fmt::format("{:.8g}", i->reach) : "null",
+      i->stress, i->modulus, i->time, i->dofs, i->active_contacts, i->solves, i->closings,
+      i->passes, i->solve_seconds, i->limit);
 }
 
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,

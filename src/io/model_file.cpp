@@ -324,8 +324,11 @@ void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, Model
              fmt::format("must be in (0, 1] (got {})", st.implicit_start_fraction));
   st.implicit_start_increments = static_cast<int>(sec.integer("implicit_start_increments", 10, 1));
   const toml::source_region& at = sec.table().get("implicit_start")->source();
-  cfg.implicit_start_where = fmt::format("{}:{}: key '{}'", at.path ? *at.path : sec.file(),
-                                         at.begin.line, sec.key_path("implicit_start"));
+  // A value from --set or a batch case was parsed from text: it has no file or line.
+  cfg.implicit_start_where =
+      at.path
+          ? fmt::format("{}:{}: key '{}'", *at.path, at.begin.line, sec.key_path("implicit_start"))
+          : fmt::format("{}: --set key '{}'", sec.file(), sec.key_path("implicit_start"));
 }
 
 void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>& stages,
