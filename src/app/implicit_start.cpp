@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "vorodec/solver/elastic_response.hpp"
@@ -18,6 +19,40 @@ namespace {
 double program_time(double d, double v, double ramp) {
   if (ramp <= 0.0) return d / v;
   return d >= 0.5 * v * ramp ? d / v + 0.5 * ramp : std::sqrt(2.0 * d * ramp / v);
+}
+
+// Platen displacement (m) the jump aims at: `reach` (already x the fraction), or short of the
+// stage's end strain or of the platen displacement `to_end_stress` (m) that reaches its end stress,
+// so that the stage still ends by its steps. `limit` names what decided.
+double jump_target(double reach, const loading::Stage& stage, double height, double to_end_stress,
+                   std::string& limit) {
+  const double fraction = stage.implicit_start_fraction;
+  const loading::StageEnd& end = stage.end;
+  double total = reach;
+  if (!std::isnan(end.axial_strain) && end.axial_strain > 0.0 &&
+      fraction * end.axial_strain * height < total) {
+    total = fraction * end.axial_strain * height;
+    limit = "end_axial_strain";
+  }
+  if (!std::isnan(end.axial_stress) && end.axial_stress > 0.0 && std::isfinite(to_end_stress) &&
+      to_end_stress > 0.0 && fraction * to_end_stress < total) {
+    total = fraction * to_end_stress;
+    limit = "end_axial_stress";
+  }
+  return total;
+}
+
+// Fraction of a part (platen d m, load `part`) that stops where the first open contact closes:
+// it enters K at the next solve.
+double closing_scale(const model::Model& model, const solver::ElasticResponse& r, double d,
+                     double part) {
+  double scale = 1.0;
+  for (std::size_t i = 0; i < model.contacts.size(); ++i) {
+    const double gap = model.contacts[i].gap, dn = part * r.load.dn[i] + d * r.unit.dn[i];
+    if (!r.active[i] && gap > r.touch && dn < 0.0 && gap + dn < r.touch)
+      scale = std::min(scale, (gap - 0.5 * r.touch) / -dn);
+  }
+  return scale;
 }
 
 }  // namespace
@@ -85,20 +120,8 @@ ImplicitStart implicit_start(model::Model& model, solver::Solver& solver,
           s.limit =
               fmt::format("first contact out of its elastic regime: blocks {} and {}", c.a, c.b);
         }
-        total = fraction * r.reach;
-        // The jump stops short of the stage's own end, so the stage still ends by its steps.
-        const loading::StageEnd& end = stage.end;
-        if (!std::isnan(end.axial_strain) && end.axial_strain > 0.0 &&
-            fraction * end.axial_strain * boundary.height() < total) {
-          total = fraction * end.axial_strain * boundary.height();
-          s.limit = "end_axial_strain";
-        }
-        const double cap_stress = (end.axial_stress - axial(r.load)) / stress_per_m;
-        if (!std::isnan(end.axial_stress) && end.axial_stress > 0.0 && stress_per_m > 0.0 &&
-            fraction * cap_stress < total) {
-          total = std::max(fraction * cap_stress, 0.0);
-          s.limit = "end_axial_stress";
-        }
+        total = jump_target(fraction * r.reach, stage, boundary.height(),
+                            (stage.end.axial_stress - axial(r.load)) / stress_per_m, s.limit);
         if (!std::isfinite(total))
           throw solver::ElasticResponseError(
               "nothing limits the implicit elastic start: no contact ever leaves its elastic "
@@ -109,13 +132,7 @@ ImplicitStart implicit_start(model::Model& model, solver::Solver& solver,
       const double left = increments - k;
       double d = phase == 1 ? std::min((total - done) / left, fraction * r.reach) : 0.0;
       double part = phase == 0 ? (1.0 - load_done) / left : 0.0;
-      // Stopped where the first open contact closes: it enters K at the next solve.
-      double scale = 1.0;
-      for (std::size_t i = 0; i < model.contacts.size(); ++i) {
-        const double gap = model.contacts[i].gap, dn = part * r.load.dn[i] + d * r.unit.dn[i];
-        if (!r.active[i] && gap > r.touch && dn < 0.0 && gap + dn < r.touch)
-          scale = std::min(scale, (gap - 0.5 * r.touch) / -dn);
-      }
+      const double scale = closing_scale(model, r, d, part);
       if (scale < 1.0) {
         d *= scale;
         part *= scale;
