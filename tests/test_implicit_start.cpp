@@ -1,7 +1,8 @@
 // The implicit elastic start (stage key implicit_start): where the Mohr-Coulomb law leaves its
 // elastic regime along a linear force path, and a small UCS run that jumps over its crack-free
 // part with CHOLMOD solves: no contact cracks in the jump, its stiffness is the explicit run's
-// elastic slope, and the peak is the explicit run's in fewer steps.
+// elastic slope, and the peak is the explicit run's in fewer steps; with confinement the jump
+// lands on the explicit run's curve; misplaced keys are refused; threads change nothing.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -51,6 +51,129 @@ struct Linearised {
   Lever la, lb;
 };
 
+// Per contact: its frame, springs, law and local index, and its levers to both centroids.
+std::vector<Linearised> linearise(const model::Model& model,
+                                  const std::vector<std::unique_ptr<laws::LawGroup>>& laws) {
+  const auto& bl = model.blocks;
+  const std::size_t nc = model.contacts.size();
+  std::vector<Linearised> lin(nc);
+  std::vector<std::size_t> first(laws.size(), nc);
+  for (std::size_t i = 0; i < nc; ++i) {
+    const model::Contact& c = model.contacts[i];
+    Linearised& e = lin[i];
+    e.law = c.law;
+    first[e.law] = std::min(first[e.law], i);  // the contacts are grouped by law
+    e.local = i - first[e.law];
+    if (!laws[e.law]->linear_springs(e.local, e.springs))
+      throw ElasticResponseError(fmt::format(
+          "contact law '{}' has no linear elastic regime for the implicit elastic start",
+          laws[e.law]->name()));
+    model::Contact copy = c;
+    e.frame = model::contact_frame(bl.corners(), copy);
+    const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+    e.la = {e.frame.point.x - bl.x[a], e.frame.point.y - bl.y[a]};
+    e.lb = {e.frame.point.x - bl.x[b], e.frame.point.y - bl.y[b]};
+  }
+  return lin;
+}
+
+// K over the free blocks' DOFs and the right-hand sides of both cases: -K_fp u_p of the unit
+// case, the applied loads of the load case.
+struct System {
+  SparseMatrix k;
+  std::array<Eigen::VectorXd, 2> rhs;
+};
+
+System assemble(const model::Model& model, const std::vector<Linearised>& lin,
+                const std::vector<char>& active, const std::vector<int>& dof, int n,
+                const std::vector<std::array<double, 3>>& unit,
+                const std::vector<std::array<double, 3>>& load) {
+  const std::size_t nb = model.blocks.size(), nc = model.contacts.size();
+  System sys{SparseMatrix(n, n), {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)}};
+  auto& rhs = sys.rhs;
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  triplets.reserve(36 * nc + static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, 0.0);  // every diagonal is stored
+  for (std::size_t b = 0; b < nb; ++b)
+    if (dof[b] >= 0)
+      for (int k = 0; k < 3; ++k) rhs[1][dof[b] + k] = load[b][static_cast<std::size_t>(k)];
+  for (std::size_t i = 0; i < nc; ++i) {
+    if (!active[i]) continue;
+    const Linearised& e = lin[i];
+    const model::Point nv = e.frame.n, s{-nv.y, nv.x};
+    const double kn = e.springs.kn, ks = e.springs.ks;
+    const double dxx = kn * nv.x * nv.x + ks * s.x * s.x;
+    const double dxy = kn * nv.x * nv.y + ks * s.x * s.y;
+    const double dyy = kn * nv.y * nv.y + ks * s.y * s.y;
+    const std::size_t blk[2] = {static_cast<std::size_t>(model.contacts[i].a),
+                                static_cast<std::size_t>(model.contacts[i].b)};
+    const Lever lever[2] = {e.la, e.lb};
+    for (int p = 0; p < 2; ++p) {
+      if (dof[blk[p]] < 0) continue;
+      for (int qs = 0; qs < 2; ++qs) {
+        const auto k = coupling(lever[p], lever[qs], dxx, dxy, dyy);
+        const double sign = p == qs ? 1.0 : -1.0;  // delta = B_a u_a - B_b u_b
+        for (int rr = 0; rr < 3; ++rr)
+          for (int cc = 0; cc < 3; ++cc) {
+            const double v = sign * k[static_cast<std::size_t>(rr)][static_cast<std::size_t>(cc)];
+            if (dof[blk[qs]] >= 0)
+              triplets.emplace_back(dof[blk[p]] + rr, dof[blk[qs]] + cc, v);
+            else
+              rhs[0][dof[blk[p]] + rr] -= v * unit[blk[qs]][static_cast<std::size_t>(cc)];
+          }
+      }
+    }
+  }
+  sys.k.setFromTriplets(triplets.begin(), triplets.end());
+  return sys;
+}
+
+// Solves K q = rhs for the first `cases` right-hand sides into q: Jacobi-scaled, CHOLMOD.
+void solve(const System& sys, int cases, std::array<std::vector<double>, 2>& q) {
+  const SparseMatrix& k = sys.k;
+  const auto& rhs = sys.rhs;
+  const auto n = static_cast<int>(k.rows());
+  // Jacobi scaling: rotations (rad) and translations (m) differ by a block size squared.
+  Eigen::VectorXd scale(n);
+  for (int i = 0; i < n; ++i) {
+    const double d = k.coeff(i, i);
+    scale[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
+  }
+  SparseMatrix ks = scale.asDiagonal() * k * scale.asDiagonal();
+  // A shift of the scaled diagonal keeps the free rigid motions of the specimen (frictionless
+  // platens leave its sideways translation free) from making K singular. The load does no
+  // work on such a motion, so its amplitude stays at round-off and it moves no force.
+  for (int i = 0; i < n; ++i)
+    ks.coeffRef(i, i) = k.coeff(i, i) > 0.0 ? ks.coeff(i, i) + regularisation : 1.0;
+  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> chol;
+  // Simplicial: no BLAS, whose threads could change the round-off with the thread count.
+  chol.setMode(Eigen::CholmodSimplicialLLt);
+  chol.compute(ks);
+  if (chol.info() != Eigen::Success)
+    throw ElasticResponseError(
+        "the contact stiffness is not positive definite: some block is not held by its "
+        "contacts (a mechanism), so it has no static elastic response");
+  for (int lc = 0; lc < cases; ++lc) {
+    const Eigen::VectorXd y = chol.solve(scale.cwiseProduct(rhs[static_cast<std::size_t>(lc)]));
+    const Eigen::VectorXd x = scale.cwiseProduct(y);
+    const Eigen::VectorXd res = k * x - rhs[static_cast<std::size_t>(lc)];
+    const double residual = norm(res);
+    const double size = std::max(norm(rhs[static_cast<std::size_t>(lc)]), 1e-300);
+    double largest = 0.0;
+    for (int i = 0; i < n; ++i) {
+      q[static_cast<std::size_t>(lc)][static_cast<std::size_t>(i)] = x[i];
+      largest = std::max(largest, std::abs(x[i]));  // NaN compares false: caught below
+    }
+    // A loaded mechanism moves by load / regularisation: far beyond anything elastic.
+    if (!(residual <= 1e-6 * size) || !(largest <= 1e3) || !std::isfinite(largest))
+      throw ElasticResponseError(fmt::format(
+          "the contact stiffness is singular (relative residual {:.2g}, largest displacement "
+          "{:.2g} m): some block is not held by its contacts (a mechanism), so it has no "
+          "static elastic response",
+          residual / size, largest));
+  }
+}
+
 }  // namespace
 
 ElasticResponse elastic_response(const model::Model& model,
@@ -73,24 +196,7 @@ ElasticResponse elastic_response(const model::Model& model,
   }
   // A touching contact with no tension (an unbonded platen) is closed within this gap.
   const double touch = 1e-6 * model.rounding_length;
-  std::vector<Linearised> lin(nc);
-  std::vector<std::size_t> first(laws.size(), nc);
-  for (std::size_t i = 0; i < nc; ++i) {
-    const model::Contact& c = model.contacts[i];
-    Linearised& e = lin[i];
-    e.law = c.law;
-    first[e.law] = std::min(first[e.law], i);  // the contacts are grouped by law
-    e.local = i - first[e.law];
-    if (!laws[e.law]->linear_springs(e.local, e.springs))
-      throw ElasticResponseError(fmt::format(
-          "contact law '{}' has no linear elastic regime for the implicit elastic start",
-          laws[e.law]->name()));
-    model::Contact copy = c;
-    e.frame = model::contact_frame(bl.corners(), copy);
-    const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-    e.la = {e.frame.point.x - bl.x[a], e.frame.point.y - bl.y[a]};
-    e.lb = {e.frame.point.x - bl.x[b], e.frame.point.y - bl.y[b]};
-  }
+  const std::vector<Linearised> lin = linearise(model, laws);
   std::vector<char> active(nc);
   for (std::size_t i = 0; i < nc; ++i)
     active[i] = !lin[i].springs.unilateral || model.contacts[i].gap <= touch;
@@ -123,81 +229,7 @@ ElasticResponse elastic_response(const model::Model& model,
   const auto t0 = std::chrono::steady_clock::now();
   for (bool again = true; again && r.passes < 50;) {
     ++r.passes;
-    std::vector<Eigen::Triplet<double, int>> triplets;
-    triplets.reserve(36 * nc + static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, 0.0);  // every diagonal is stored
-    std::array<Eigen::VectorXd, 2> rhs{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
-    for (std::size_t b = 0; b < nb; ++b)
-      if (dof[b] >= 0)
-        for (int k = 0; k < 3; ++k) rhs[1][dof[b] + k] = load[b][static_cast<std::size_t>(k)];
-    for (std::size_t i = 0; i < nc; ++i) {
-      if (!active[i]) continue;
-      const Linearised& e = lin[i];
-      const model::Point nv = e.frame.n, s{-nv.y, nv.x};
-      const double kn = e.springs.kn, ks = e.springs.ks;
-      const double dxx = kn * nv.x * nv.x + ks * s.x * s.x;
-      const double dxy = kn * nv.x * nv.y + ks * s.x * s.y;
-      const double dyy = kn * nv.y * nv.y + ks * s.y * s.y;
-      const std::size_t blk[2] = {static_cast<std::size_t>(model.contacts[i].a),
-                                  static_cast<std::size_t>(model.contacts[i].b)};
-      const Lever lever[2] = {e.la, e.lb};
-      for (int p = 0; p < 2; ++p) {
-        if (dof[blk[p]] < 0) continue;
-        for (int qs = 0; qs < 2; ++qs) {
-          const auto k = coupling(lever[p], lever[qs], dxx, dxy, dyy);
-          const double sign = p == qs ? 1.0 : -1.0;  // delta = B_a u_a - B_b u_b
-          for (int rr = 0; rr < 3; ++rr)
-            for (int cc = 0; cc < 3; ++cc) {
-              const double v = sign * k[static_cast<std::size_t>(rr)][static_cast<std::size_t>(cc)];
-              if (dof[blk[qs]] >= 0)
-                triplets.emplace_back(dof[blk[p]] + rr, dof[blk[qs]] + cc, v);
-              else
-                rhs[0][dof[blk[p]] + rr] -= v * unit[blk[qs]][static_cast<std::size_t>(cc)];
-            }
-        }
-      }
-    }
-    SparseMatrix k(n, n);
-    k.setFromTriplets(triplets.begin(), triplets.end());
-    // Jacobi scaling: rotations (rad) and translations (m) differ by a block size squared.
-    Eigen::VectorXd scale(n);
-    for (int i = 0; i < n; ++i) {
-      const double d = k.coeff(i, i);
-      scale[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
-    }
-    SparseMatrix ks = scale.asDiagonal() * k * scale.asDiagonal();
-    // A shift of the scaled diagonal keeps the free rigid motions of the specimen (frictionless
-    // platens leave its sideways translation free) from making K singular. The load does no
-    // work on such a motion, so its amplitude stays at round-off and it moves no force.
-    for (int i = 0; i < n; ++i)
-      ks.coeffRef(i, i) = k.coeff(i, i) > 0.0 ? ks.coeff(i, i) + regularisation : 1.0;
-    Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> chol;
-    // Simplicial: no BLAS, whose threads could change the round-off with the thread count.
-    chol.setMode(Eigen::CholmodSimplicialLLt);
-    chol.compute(ks);
-    if (chol.info() != Eigen::Success)
-      throw ElasticResponseError(
-          "the contact stiffness is not positive definite: some block is not held by its "
-          "contacts (a mechanism), so it has no static elastic response");
-    for (int lc = 0; lc < cases; ++lc) {
-      const Eigen::VectorXd y = chol.solve(scale.cwiseProduct(rhs[static_cast<std::size_t>(lc)]));
-      const Eigen::VectorXd x = scale.cwiseProduct(y);
-      const Eigen::VectorXd res = k * x - rhs[static_cast<std::size_t>(lc)];
-      const double residual = norm(res);
-      const double size = std::max(norm(rhs[static_cast<std::size_t>(lc)]), 1e-300);
-      double largest = 0.0;
-      for (int i = 0; i < n; ++i) {
-        q[static_cast<std::size_t>(lc)][static_cast<std::size_t>(i)] = x[i];
-        largest = std::max(largest, std::abs(x[i]));  // NaN compares false: caught below
-      }
-      // A loaded mechanism moves by load / regularisation: far beyond anything elastic.
-      if (!(residual <= 1e-6 * size) || !(largest <= 1e3) || !std::isfinite(largest))
-        throw ElasticResponseError(fmt::format(
-            "the contact stiffness is singular (relative residual {:.2g}, largest displacement "
-            "{:.2g} m): some block is not held by its contacts (a mechanism), so it has no "
-            "static elastic response",
-            residual / size, largest));
-    }
+    solve(assemble(model, lin, active, dof, n, unit, load), cases, q);
     // A unilateral contact that the case being applied would pull leaves the system; solve again.
     again = false;
     const int applied = loaded && load_left > 0.0 ? 1 : 0;

@@ -51,7 +51,7 @@ struct ElasticResponse {
   double touch = 0;
   std::size_t dofs = 0;
   std::size_t active_contacts = 0;
-  int passes = 0;                // solves: open contacts that would pull are dropped, then again
+  int passes = 0;  // factorisations: one more each time open contacts that would pull are dropped
   double factorise_seconds = 0;  // wall time of the CHOLMOD analysis + factorisations
 };
 
