@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "vorodec/measure/specimen.hpp"
 #include "vorodec/solver/elastic_response.hpp"
 
 namespace vorodec::app {
@@ -102,7 +103,8 @@ ImplicitStart implicit_start(model::Model& model, solver::Solver& solver,
       s.solve_seconds += r.factorise_seconds;
       // Axial stress per metre of platen displacement, as measure_specimen takes it.
       const auto axial = [&](const solver::ElasticCase& c) {
-        return (c.force[top][1] - c.force[bottom][1]) / (2.0 * boundary.width() * model.thickness);
+        return measure::platen_stress(c.force[top][1], c.force[bottom][1], boundary,
+                                      model.thickness);
       };
       const double stress_per_m = axial(r.unit);
       if (solves == 0) {

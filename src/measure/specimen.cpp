@@ -28,6 +28,11 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
 }
 }  // namespace
 
+double platen_stress(double top_fy, double bottom_fy, const loading::SpecimenBoundary& boundary,
+                     double thickness) {
+  return (top_fy - bottom_fy) / (2.0 * boundary.width() * thickness);
+}
+
 SpecimenState measure_specimen(const model::Model& model, const loading::SpecimenBoundary& boundary,
                                const solver::Solver& solver) {
   const auto& bl = model.blocks;
@@ -36,8 +41,8 @@ SpecimenState measure_specimen(const model::Model& model, const loading::Specime
   if (top >= 0 && bot >= 0) {
     const auto t = static_cast<std::size_t>(top), b = static_cast<std::size_t>(bot);
     s.axial_strain = ((bl.y[b] - bl.y0[b]) - (bl.y[t] - bl.y0[t])) / boundary.height();
-    s.axial_stress = (solver.contact_force(t).y - solver.contact_force(b).y) /
-                     (2.0 * boundary.width() * model.thickness);
+    s.axial_stress = platen_stress(solver.contact_force(t).y, solver.contact_force(b).y, boundary,
+                                   model.thickness);
   }
   s.lateral_strain = -(mean_dx(bl, boundary.right_gauges()) - mean_dx(bl, boundary.left_gauges())) /
                      boundary.width();

@@ -231,8 +231,7 @@ void Solver::displace(const std::vector<double>& dx, const std::vector<double>& 
     bl.vy[b] = dy[b] / dt_;
     bl.omega[b] = dtheta[b] / dt_;
   }
-  model::refresh_world(model_);
-  detect(false);
+  detect(false);  // refreshes the world arrays from the new positions
   contact_forces();
   for (std::size_t b = 0; b < nb; ++b) {
     if (bl.prescribed[b])  // and after it

@@ -15,6 +15,11 @@ struct SpecimenState {
   double volumetric_strain = 0;  // axial + lateral (2D)
 };
 
+// Pa, compression positive: the mean of the vertical contact forces on the top and bottom platens
+// (N per m of thickness; the specimen pushes the top one up, the bottom one down) over the width.
+double platen_stress(double top_fy, double bottom_fy, const loading::SpecimenBoundary& boundary,
+                     double thickness);
+
 SpecimenState measure_specimen(const model::Model& model, const loading::SpecimenBoundary& boundary,
                                const solver::Solver& solver);
 
