@@ -3,6 +3,8 @@
 // record) shared by every law. Included only by the law sources, so Law::evaluate is inlined.
 #include <omp.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -130,6 +132,18 @@ class LawGroupOf final : public LawGroup {
   // blocks: -14 % per step); below it, it only adds instructions (+8 % in the default model).
   static constexpr std::size_t prefetch_from = 16384, prefetch_ahead = 8;
 
+  // Prefetches every cache line of the `bytes` bytes from `from`. At most 128 bytes span at most
+  // three lines, and then the middle byte lies in the middle one. Integer arithmetic: the range
+  // may run past the end of its array.
+  template <std::size_t bytes>
+  static void prefetch_bytes(const void* from) {
+    static_assert(bytes > 0 && bytes <= 128);
+    const auto p = reinterpret_cast<std::uintptr_t>(from);
+    __builtin_prefetch(reinterpret_cast<const void*>(p));
+    __builtin_prefetch(reinterpret_cast<const void*>(p + bytes / 2));
+    __builtin_prefetch(reinterpret_cast<const void*>(p + bytes - 1));
+  }
+
   template <bool prefetch>
   void step_range(StepContext& ctx, std::size_t begin, std::size_t end) {
     const int chunks = ctx.chunks;
@@ -159,10 +173,15 @@ class LawGroupOf final : public LawGroup {
         // them a few contacts ahead so their latency overlaps the work on this one.
         if (prefetch && last - cp > std::ptrdiff_t{prefetch_ahead}) {
           const model::Contact& ahead = cp[prefetch_ahead];
-          __builtin_prefetch(&bl.world[ahead.edge]);
-          __builtin_prefetch(&bl.shape[ahead.edge]);
+          // The edge's end corner (and the corner after it, for the walk test) is the next
+          // record in memory unless the edge closes its polygon: fetched with it, not after it.
+          prefetch_bytes<2 * sizeof(model::CornerWorld) + sizeof(model::Point)>(
+              &bl.world[ahead.edge]);
+          prefetch_bytes<sizeof(model::CornerShape) + offsetof(model::CornerShape, next) +
+                         sizeof(std::uint32_t)>(&bl.shape[ahead.edge]);
           __builtin_prefetch(&bl.world[ahead.corner]);
           __builtin_prefetch(&kin[static_cast<std::size_t>(ahead.b)]);
+          __builtin_prefetch(&sums[static_cast<std::size_t>(ahead.b)], 1);
         }
         model::Contact& c = *cp;
         const model::ContactFrame f = model::contact_frame(bl, c);
