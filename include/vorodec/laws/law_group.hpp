@@ -131,6 +131,7 @@ class LawGroupOf final : public LawGroup {
   // From this many contacts the corner records outgrow the L2 cache and prefetching pays (1e4
   // blocks: -14 % per step); below it, it only adds instructions (+8 % in the default model).
   static constexpr std::size_t prefetch_from = 16384, prefetch_ahead = 8;
+  static constexpr std::ptrdiff_t batch = 32;
 
   // Prefetches every cache line of the `bytes` bytes from `from`. At most 128 bytes span at most
   // three lines, and then the middle byte lies in the middle one. Integer arithmetic: the range
@@ -168,23 +169,9 @@ class LawGroupOf final : public LawGroup {
       typename Law::State* state = loop.state + (lo - begin);
       const std::uint8_t* shared_side = shared_sides + lo;
       model::Contact* const last = contacts + hi;
-      for (model::Contact* cp = contacts + lo; cp != last; ++cp, ++props, ++state, ++shared_side) {
-        // The edge's records sit at the neighbour block's corners, not in contact order: fetch
-        // them a few contacts ahead so their latency overlaps the work on this one.
-        if (prefetch && last - cp > std::ptrdiff_t{prefetch_ahead}) {
-          const model::Contact& ahead = cp[prefetch_ahead];
-          // The edge's end corner (and the corner after it, for the walk test) is the next
-          // record in memory unless the edge closes its polygon: fetched with it, not after it.
-          prefetch_bytes<2 * sizeof(model::CornerWorld) + sizeof(model::Point)>(
-              &bl.world[ahead.edge]);
-          prefetch_bytes<sizeof(model::CornerShape) + offsetof(model::CornerShape, next) +
-                         sizeof(std::uint32_t)>(&bl.shape[ahead.edge]);
-          __builtin_prefetch(&bl.world[ahead.corner]);
-          __builtin_prefetch(&kin[static_cast<std::size_t>(ahead.b)]);
-          __builtin_prefetch(&sums[static_cast<std::size_t>(ahead.b)], 1);
-        }
-        model::Contact& c = *cp;
-        const model::ContactFrame f = model::contact_frame(bl, c);
+      // Law, force and sums of contact c, whose frame is f; then on to the next contact's data.
+      const auto settle = [&](const model::ContactFrame& f, model::Contact& c)
+          __attribute__((always_inline)) {
         const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
         const model::BlockKinematics& ka = kin[a];
         const model::BlockKinematics& kb = kin[b];
@@ -199,7 +186,7 @@ class LawGroupOf final : public LawGroup {
         const double ma = (f.point.x - ka.x) * fy - (f.point.y - ka.y) * fx;
         const double mb = (f.point.x - kb.x) * fy - (f.point.y - kb.y) * fx;
         const std::uint8_t shared = *shared_side;
-        if (shared != 0) forces[cp - contacts] = {fx, fy, ma, mb};
+        if (shared != 0) forces[&c - contacts] = {fx, fy, ma, mb};
         if (!(shared & a_shared)) {
           sums[a].fx += fx;
           sums[a].fy += fy;
@@ -209,6 +196,40 @@ class LawGroupOf final : public LawGroup {
           sums[b].fx -= fx;
           sums[b].fy -= fy;
           sums[b].m -= mb;
+        }
+        ++props;
+        ++state;
+        ++shared_side;
+      };
+      if constexpr (prefetch) {
+        for (model::Contact* cp = contacts + lo; cp != last; ++cp) {
+          // The edge's records sit at the neighbour block's corners, not in contact order: fetch
+          // them a few contacts ahead so their latency overlaps the work on this one.
+          if (last - cp > std::ptrdiff_t{prefetch_ahead}) {
+            const model::Contact& ahead = cp[prefetch_ahead];
+            // The edge's end corner (and the corner after it, for the walk test) is the next
+            // record in memory unless the edge closes its polygon: fetched with it, not after it.
+            prefetch_bytes<2 * sizeof(model::CornerWorld) + sizeof(model::Point)>(
+                &bl.world[ahead.edge]);
+            prefetch_bytes<sizeof(model::CornerShape) + offsetof(model::CornerShape, next) +
+                           sizeof(std::uint32_t)>(&bl.shape[ahead.edge]);
+            __builtin_prefetch(&bl.world[ahead.corner]);
+            __builtin_prefetch(&kin[static_cast<std::size_t>(ahead.b)]);
+            __builtin_prefetch(&sums[static_cast<std::size_t>(ahead.b)], 1);
+          }
+          settle(model::contact_frame(bl, *cp), *cp);
+        }
+      } else {
+        // From cache, the frames of a batch first: independent of one another, so the core
+        // overlaps their square roots and divisions. (From memory this was slower: see
+        // bench/README.md, seventh pass.)
+        model::ContactFrame frames[batch];
+        for (model::Contact* first = contacts + lo; first != last;) {
+          model::Contact* const stop = last - first > batch ? first + batch : last;
+          for (model::Contact* cp = first; cp != stop; ++cp)
+            frames[cp - first] = model::contact_frame(bl, *cp);
+          for (model::Contact* cp = first; cp != stop; ++cp) settle(frames[cp - first], *cp);
+          first = stop;
         }
       }
     }
