@@ -131,6 +131,7 @@ class LawGroupOf final : public LawGroup {
   // From this many contacts the corner records outgrow the L2 cache and prefetching pays (1e4
   // blocks: -14 % per step); below it, it only adds instructions (+8 % in the default model).
   static constexpr std::size_t prefetch_from = 16384, prefetch_ahead = 8;
+  // Below prefetch_from, contacts whose frames are computed ahead of their laws.
   static constexpr std::ptrdiff_t batch = 32;
 
   // Prefetches every cache line of the `bytes` bytes from `from`. At most 128 bytes span at most
@@ -145,7 +146,7 @@ class LawGroupOf final : public LawGroup {
     __builtin_prefetch(reinterpret_cast<const void*>(p + bytes - 1));
   }
 
-  template <bool prefetch>
+  template <bool from_memory>
   void step_range(StepContext& ctx, std::size_t begin, std::size_t end) {
     const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
@@ -201,7 +202,7 @@ class LawGroupOf final : public LawGroup {
         ++state;
         ++shared_side;
       };
-      if constexpr (prefetch) {
+      if constexpr (from_memory) {
         for (model::Contact* cp = contacts + lo; cp != last; ++cp) {
           // The edge's records sit at the neighbour block's corners, not in contact order: fetch
           // them a few contacts ahead so their latency overlaps the work on this one.
