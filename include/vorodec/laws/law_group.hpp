@@ -1,6 +1,6 @@
 #pragma once
-// LawGroupOf<Law>: the fused per-contact loop (geometry -> kinematics -> Law::evaluate -> force
-// record) shared by every law. Included only by the law sources, so Law::evaluate is inlined.
+// LawGroupOf<Law>: the per-contact loop (geometry -> kinematics -> Law::evaluate -> force record)
+// shared by every law. Included only by the law sources, so Law::evaluate is inlined.
 #include <omp.h>
 
 #include <cstddef>
