@@ -66,6 +66,39 @@ void run_steps(benchmark::State& state, const io::ModelConfig& cfg) {
                                                   static_cast<double>(bl.size());
 }
 
+// `copies` 1e3-block specimens stepped in turn, `visit` steps each before the next, 200 steps each
+// in all: every step runs the 1e3 code on 1e3 blocks, but the working set is `copies` times as
+// large. With distinct seeds (second argument 1) the sequence of contact frames the branch
+// predictor sees grows as well; with one seed (0) every copy repeats the same one. Against
+// BM_ScaledStepFixed at copies x 1e3 blocks, visit 1 separates what the cache and the predictor
+// cost from what the step's work costs as a specimen grows; visit > 1 is the best that stepping a
+// large specimen `visit` steps at a time, cache-sized part by part, could do (no halo, no
+// overhead).
+void BM_CopiesStep(benchmark::State& state) {
+  const auto copies = static_cast<std::size_t>(state.range(0));
+  const bool distinct = state.range(1) != 0;
+  const auto visit = static_cast<int>(state.range(2));
+  omp_set_num_threads(1);
+  std::vector<app::PreparedModel> models;
+  for (std::size_t k = 0; k < copies; ++k) {
+    io::ModelConfig cfg = scaled_model(1000);
+    cfg.seed = cfg.tessellation.seed = distinct ? k + 1 : 1;
+    const auto tess = app::make_specimen(cfg);
+    models.push_back(app::prepare_model(cfg, tess));
+    loading::SpecimenBoundary(*models.back().model).set_platen_velocity(*models.back().model, 0.05);
+    for (int i = 0; i < 300; ++i) models.back().solver->step();
+  }
+  std::size_t updates = 0;
+  for (auto _ : state) {
+    for (auto& pm : models) {
+      for (int i = 0; i < visit; ++i) pm.solver->step();
+      updates += static_cast<std::size_t>(visit) * pm.model->contacts.size();
+    }
+  }
+  state.counters["cu/s"] =
+      benchmark::Counter(static_cast<double>(updates), benchmark::Counter::kIsRate);
+}
+
 void BM_DefaultModelStep(benchmark::State& state) {
   run_steps(state, default_model());
 }
@@ -93,5 +126,29 @@ BENCHMARK(BM_ScaledStep)
     ->Args({10000, 1})
     ->Args({100000, 1})
     ->Iterations(200)
+    ->Unit(benchmark::kMillisecond);
+// 200 steps per copy, as BM_ScaledStepFixed's 200 steps: the same state per specimen as there.
+BENCHMARK(BM_CopiesStep)
+    ->Args({1, 1, 1})
+    ->Args({10, 1, 1})
+    ->Args({10, 0, 1})
+    ->Args({100, 1, 1})
+    ->Args({100, 0, 1})
+    ->Iterations(200)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CopiesStep)
+    ->Args({10, 1, 2})
+    ->Args({100, 1, 2})
+    ->Iterations(100)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CopiesStep)
+    ->Args({10, 1, 4})
+    ->Args({100, 1, 4})
+    ->Iterations(50)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CopiesStep)
+    ->Args({10, 1, 8})
+    ->Args({100, 1, 8})
+    ->Iterations(25)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
