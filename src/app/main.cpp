@@ -1,4 +1,4 @@
-// The vorodec command: run, check and build model files.
+// The vorodec command: run, resume, check and build model files, run batches.
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -8,6 +8,7 @@
 
 #include "vorodec/app/batch.hpp"
 #include "vorodec/app/simulation.hpp"
+#include "vorodec/checkpoint/checkpoint_file.hpp"
 #include "vorodec/io/model_file.hpp"
 #include "vorodec/io/specimen_file.hpp"
 
@@ -65,6 +66,23 @@ void print_report(const geometry::Tessellation& t, const io::ModelConfig& cfg) {
   for (const auto& w : t.report.warnings) fmt::print(stderr, "warning: specimen: {}\n", w);
 }
 
+void print_outcome(const std::string& what, const app::RunSummary& s, const fs::path& out) {
+  if (s.exit_code == app::kStoppedForResume) {
+    fmt::print("{}: {} after {:.1f} s; continue with `vorodec resume {}`\n", what, s.status,
+               s.wall_seconds, out.string());
+    return;
+  }
+  fmt::print(
+      "{}: {} after {} steps in {:.1f} s; peak stress {:.2f} MPa,{} E {:.2f} GPa, nu {:.3f}; "
+      "cracks {} tensile, {} shear\nresults in {}/ (history.csv, summary.json, cracks.csv, "
+      "vtk/*.pvd)\n",
+      what, s.status, s.steps, s.wall_seconds, s.peak_stress / 1e6,
+      s.tensile_strength > 0
+          ? fmt::format(" tensile strength {:.2f} MPa,", s.tensile_strength / 1e6)
+          : "",
+      s.youngs_modulus / 1e9, s.poisson_ratio, s.cracks_tensile, s.cracks_shear, out.string());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,7 +113,19 @@ int main(int argc, char** argv) {
   run->add_option("--max-steps", max_steps, "stop after this many steps (short runs)")
       ->check(CLI::PositiveNumber);
   run->add_flag("--no-vtk", no_vtk, "do not write the VTK series");
+  long stop_at_step = 0;
+  run->add_option("--stop-at-step", stop_at_step,
+                  "write a checkpoint at this step and stop (exit 6), for `vorodec resume`")
+      ->check(CLI::PositiveNumber);
   add_set(run);
+
+  std::string resume_dir;
+  auto* resume = cli.add_subcommand("resume", "continue a stopped run from its checkpoint");
+  resume->add_option("dir", resume_dir, "results folder of the stopped run")->required();
+  resume->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  resume->add_option("--stop-at-step", stop_at_step, "stop again at this step (exit 6)")
+      ->check(CLI::PositiveNumber);
 
   auto* check = cli.add_subcommand("check", "validate a model file and its specimen, run nothing");
   check->add_option("model", model_path, "model file (.toml)")->required();
@@ -127,7 +157,13 @@ int main(int argc, char** argv) {
     return app::run_batch(batch_options);
   }
   if (threads > 0) omp_set_num_threads(threads);
+  if (run->parsed() || resume->parsed()) app::stop_on_signals();
   try {
+    if (resume->parsed()) {
+      const app::RunSummary s = app::resume_run(resume_dir, stop_at_step, true);
+      print_outcome(resume_dir, s, resume_dir);
+      return s.exit_code;
+    }
     const io::ModelConfig cfg = io::read_model_file(model_path, parse_sets(sets));
     geometry::Tessellation specimen;
     try {
@@ -152,18 +188,13 @@ int main(int argc, char** argv) {
       fmt::print("specimen written to {}\n", (out / "specimen.vsp").string());
       return 0;
     }
-    app::RunOptions options{out, max_steps, !no_vtk, true};
-    const app::RunSummary s = app::run_model(cfg, specimen, options);
-    fmt::print(
-        "{}: {} after {} steps in {:.1f} s; peak stress {:.2f} MPa,{} E {:.2f} GPa, nu {:.3f}; "
-        "cracks {} tensile, {} shear\nresults in {}/ (history.csv, summary.json, cracks.csv, "
-        "vtk/*.pvd)\n",
-        model_path, s.status, s.steps, s.wall_seconds, s.peak_stress / 1e6,
-        s.tensile_strength > 0
-            ? fmt::format(" tensile strength {:.2f} MPa,", s.tensile_strength / 1e6)
-            : "",
-        s.youngs_modulus / 1e9, s.poisson_ratio, s.cracks_tensile, s.cracks_shear, out.string());
+    app::RunOptions options{out, max_steps, !no_vtk, true, stop_at_step};
+    const app::RunSummary s = app::run_model(cfg, specimen, options, parse_sets(sets));
+    print_outcome(model_path, s, out);
     return s.exit_code;
+  } catch (const checkpoint::CheckpointError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return bad_input;
   } catch (const io::ModelFileError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return bad_input;

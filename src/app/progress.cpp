@@ -8,45 +8,54 @@
 
 namespace vorodec::app {
 
-Progress::Progress(bool enabled, std::size_t stages)
+Progress::Progress(bool enabled)
     : enabled_(enabled),
       tty_(isatty(STDERR_FILENO) != 0),
-      stages_(std::max<std::size_t>(stages, 1)),
-      start_(std::chrono::steady_clock::now()),
-      last_(start_) {}
+      start_(Clock::now()),
+      last_(start_),
+      stage_start_(start_) {}
 
-void Progress::update(std::size_t stage, double fraction, double stress, double peak, long steps) {
-  if (!enabled_ || (++calls_ % 500) != 0) return;
-  const auto now = std::chrono::steady_clock::now();
-  const double p =
-      (static_cast<double>(stage) + std::clamp(fraction, 0.0, 1.0)) / static_cast<double>(stages_);
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const std::string eta =
-      p > 0.01 ? fmt::format("{:.0f} s", elapsed * (1.0 - p) / p) : std::string("?");
-  if (tty_) {
-    if (std::chrono::duration<double>(now - last_).count() < 0.2) return;
-    last_ = now;
-    const int width = 30, filled = static_cast<int>(p * width);
-    fmt::print(
-        stderr,
-        "\r[{}{}] {:5.1f}%  stage {}/{}  step {}  stress {:.2f} MPa (peak {:.2f})  ETA {}   ",
-        std::string(static_cast<std::size_t>(filled), '#'),
-        std::string(static_cast<std::size_t>(width - filled), '.'), 100 * p, stage + 1, stages_,
-        steps, stress / 1e6, peak / 1e6, eta);
-  } else {
-    const int decile = static_cast<int>(p * 10);
-    if (decile == last_decile_) return;
-    last_decile_ = decile;
-    fmt::print(
-        stderr,
-        "progress {:3.0f}%  stage {}/{}  step {}  stress {:.2f} MPa  elapsed {:.0f} s  ETA {}\n",
-        100 * p, stage + 1, stages_, steps, stress / 1e6, elapsed, eta);
+void Progress::show(const ProgressReport& r) {
+  const auto now = Clock::now();
+  const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
+  const bool new_stage = r.stage != stage_;
+  if (new_stage) {
+    stage_ = r.stage;
+    stage_start_ = now;
+    decile_ = -1;
   }
+  const bool known = !std::isnan(r.fraction);
+  const double f = known ? std::clamp(r.fraction, 0.0, 1.0) : 0.0;
+  std::string what;
+  if (known) {
+    const double in_stage = seconds(now - stage_start_);
+    // An ETA once a twentieth of the stage has run: before that it says more noise than time.
+    const std::string eta =
+        f > 0.05 ? fmt::format("ETA {:.0f} s", in_stage * (1.0 - f) / f) : std::string("ETA ?");
+    what = fmt::format("{:5.1f}% of the stage  {}", 100 * f, eta);
+  } else {
+    what = r.waiting;
+  }
+  const std::string line =
+      fmt::format("stage {}/{} {}  step {}  stress {:.2f} MPa  {}", r.stage + 1, r.stages,
+                  r.stage_name, r.steps, r.stress / 1e6, what);
+  if (tty_) {
+    if (!new_stage && seconds(now - last_) < 0.2) return;
+    fmt::print(stderr, "\r{:<110}", line);
+    drawn_ = true;
+  } else {
+    const int decile = known ? static_cast<int>(10 * f) : -1;
+    const bool step_on = known && decile > decile_;
+    if (!new_stage && !step_on && seconds(now - last_) < 30.0) return;
+    decile_ = std::max(decile_, decile);
+    fmt::print(stderr, "progress: {}  elapsed {:.0f} s\n", line, seconds(now - start_));
+  }
+  last_ = now;
   std::fflush(stderr);
 }
 
 void Progress::finish() {
-  if (enabled_ && tty_) fmt::print(stderr, "\n");
+  if (enabled_ && tty_ && drawn_) fmt::print(stderr, "\n");
 }
 
 }  // namespace vorodec::app

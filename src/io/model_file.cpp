@@ -413,8 +413,10 @@ void merge_into(toml::table& base, const toml::table& over) {
 }
 
 // A model file may start from another: `base = "file.toml"` (relative to it). Keys it sets win.
-toml::table load(const std::filesystem::path& file, int depth) {
+toml::table load(const std::filesystem::path& file, int depth,
+                 std::vector<std::filesystem::path>& sources) {
   toml::table t = parse(file);
+  sources.push_back(file);
   const toml::node* b = t.get("base");
   if (!b) return t;
   const auto name = b->value_exact<std::string>();
@@ -426,7 +428,7 @@ toml::table load(const std::filesystem::path& file, int depth) {
     throw ModelFileError(fmt::format(
         "{}:{}: key 'base': {}", file.string(), line,
         depth >= 8 ? "more than 8 nested base files" : "no such file: " + path.string()));
-  toml::table merged = load(path, depth + 1);
+  toml::table merged = load(path, depth + 1, sources);
   t.erase("base");
   merge_into(merged, t);
   return merged;
@@ -563,6 +565,8 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     cfg.output.vtk_steps = o.integer("vtk_steps", 20000, 1);
     if (o.has("damage_grid_cell"))
       cfg.output.damage_grid_cell = o.positive("damage_grid_cell", laws::required);
+    cfg.output.checkpoint_steps = o.integer("checkpoint_steps", 0, 0);
+    cfg.output.checkpoint_wall_time = o.non_negative("checkpoint_wall_time", 600.0);
     o.finish();
   }
   top.finish();
@@ -574,7 +578,7 @@ ModelConfig read_model_file(const std::filesystem::path& file,
                             const std::vector<Override>& overrides) {
   ModelConfig cfg;
   cfg.file = file;
-  toml::table root = load(file, 0);
+  toml::table root = load(file, 0, cfg.sources);
   for (const Override& o : overrides) apply_override(root, o, file.string());
   try {
     read_root(root, cfg);
@@ -587,6 +591,8 @@ ModelConfig read_model_file(const std::filesystem::path& file,
     }
     throw;
   }
+  if (cfg.specimen_file) cfg.sources.push_back(*cfg.specimen_file);
+  if (cfg.grains && cfg.grains->grain_file) cfg.sources.push_back(*cfg.grains->grain_file);
   return cfg;
 }
 

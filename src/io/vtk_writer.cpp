@@ -287,8 +287,11 @@ vtkNew<vtkImageData> grid_image(const VtkFrame& f) {
 // Appended raw binary, zlib-compressed, 64-bit headers: the same for every series.
 template <class Writer>
 void write_xml(vtkDataObject* data, const std::filesystem::path& file) {
+  // Written under a temporary name and renamed: a killed run leaves only whole frames.
+  std::filesystem::path tmp = file;
+  tmp += ".tmp";
   vtkNew<Writer> w;
-  w->SetFileName(file.string().c_str());
+  w->SetFileName(tmp.string().c_str());
   w->SetInputData(data);
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();
@@ -297,6 +300,9 @@ void write_xml(vtkDataObject* data, const std::filesystem::path& file) {
   if (w->Write() != 1 || w->GetErrorCode() != 0) {
     throw std::runtime_error("VtkSeriesWriter: cannot write " + file.string());
   }
+  std::error_code ec;
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) throw std::runtime_error("VtkSeriesWriter: cannot write " + file.string());
 }
 
 }  // namespace
@@ -308,6 +314,14 @@ VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir) : dir_(std::move(dir
     throw std::runtime_error("VtkSeriesWriter: cannot create output directory '" + dir_.string() +
                              "'" + (ec ? ": " + ec.message() : std::string(": not a directory")));
   }
+}
+
+VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir, Written written)
+    : VtkSeriesWriter(std::move(dir)) {
+  times_ = std::move(written.times);
+  grid_ = written.grid;
+  zones_ = written.zones;
+  write_collections();
 }
 
 void VtkSeriesWriter::write(const VtkFrame& frame) {

@@ -82,6 +82,7 @@ StageOutcome StageControl::judge(const StageSample& s) {
     // A peak counts once the stress has risen 0.1 MPa above its start: a stage that begins at a
     // low stress while its velocity ramps up (after an unloading) is not past a peak.
     past_peak = row_peak_ > std::max(stress0_, 0.0) + 1e5 && rows_since_peak_ >= 3;
+    past_peak_ = past_peak;
   }
   if (!std::isnan(end.post_peak_fraction) && past_peak) {
     const double drop = (1.0 - load / row_peak_) / (1.0 - end.post_peak_fraction);

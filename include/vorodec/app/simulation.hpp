@@ -30,7 +30,16 @@ struct RunOptions {
   long max_steps = 0;         // > 0: stop after this many steps (short mode)
   bool write_vtk = true;
   bool progress = true;  // progress bar (terminal) or progress lines
+  // > 0: at the first step from this one where the run can resume, write a checkpoint and stop
+  // (exit code kStoppedForResume), as SIGINT or SIGTERM do.
+  long stop_at_step = 0;
 };
+
+// Exit code of a run stopped with a checkpoint written (signal or --stop-at-step):
+// `vorodec resume DIR` continues it.
+inline constexpr int kStoppedForResume = 6;
+// The checkpoint file in a results folder.
+inline constexpr const char* kCheckpointFile = "checkpoint.vck";
 
 // What the implicit elastic start of the first stage did (stage key implicit_start).
 struct ImplicitStart {
@@ -45,10 +54,16 @@ struct ImplicitStart {
   int passes = 0;    // factorisations (a solve refactorises when it drops a pulled contact)
   double solve_seconds = 0;
   std::string limit;  // what ends the elastic regime, or which end condition capped the jump
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(reach, displacement, stress, modulus, time, dofs, active_contacts, solves, closings, passes,
+       solve_seconds, limit);
+  }
 };
 
 struct RunSummary {
-  int exit_code = 0;  // 0 finished, 3 stopped unstable, 4 step limit of the model file reached
+  // 0 finished, 3 stopped unstable, 4 step limit of the model file reached, kStoppedForResume
+  int exit_code = 0;
   std::string status;
   double peak_stress = 0;       // Pa
   double tensile_strength = 0;  // Pa: Brazilian (disc specimens) or direct tension (largest pull)
@@ -64,8 +79,17 @@ struct RunSummary {
   std::optional<ImplicitStart> implicit_start;
 };
 
+// Runs the load path. `overrides` are those cfg was read with (a checkpoint records them).
 RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& specimen,
-                     const RunOptions& options);
+                     const RunOptions& options, const std::vector<io::Override>& overrides = {});
+
+// Continues the run whose checkpoint is in `dir`, with the options it was started with but for
+// stop_at_step and progress. Throws checkpoint::CheckpointError (no, foreign, truncated or corrupt
+// checkpoint) and io::ModelFileError (the model file changed since).
+RunSummary resume_run(const std::filesystem::path& dir, long stop_at_step, bool progress);
+
+// SIGINT and SIGTERM then stop a run at its next step with a checkpoint (kStoppedForResume).
+void stop_on_signals();
 
 // The initial contacts of a model with their sampled properties, as text (for `vorodec build`).
 std::string describe_contacts(const io::ModelConfig& cfg, const geometry::Tessellation& specimen);

@@ -68,6 +68,8 @@ struct OutputSettings {
   long history_steps = 200;       // steps between history rows
   long vtk_steps = 20000;         // steps between VTK frames (also at stage ends)
   double damage_grid_cell = 0.0;  // m, cell side of the damage grid; 0: about 5 mean block sizes
+  long checkpoint_steps = 0;      // steps between checkpoints; 0: none by step count
+  double checkpoint_wall_time = 600.0;  // s of wall time between checkpoints; 0: none by time
 };
 
 // [blocks] deformable = true: specimen blocks zoned into constant-strain triangles (platens stay
@@ -81,6 +83,9 @@ struct DeformableSettings {
 
 struct ModelConfig {
   std::filesystem::path file;
+  // Every file the model was read from (the model file, its base files, a specimen or grain
+  // file): a checkpoint's model hash covers them.
+  std::vector<std::filesystem::path> sources;
   std::string title;
   std::uint64_t seed = 1;
   geometry::TessellationSettings tessellation;

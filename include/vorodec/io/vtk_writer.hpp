@@ -66,9 +66,18 @@ struct VtkFrame {
 // cracks.pvd (damage.pvd) after every frame, so an interrupted run stays readable.
 class VtkSeriesWriter {
  public:
+  // What a checkpoint keeps of a series: the frames written so far.
+  struct Written {
+    std::vector<double> times;  // s, per frame
+    bool grid = false, zones = false;
+  };
   explicit VtkSeriesWriter(std::filesystem::path dir);
+  // Continues a series at its checkpoint: the collections are cut back to its frames at once
+  // (later frame files are written again as the run reaches them).
+  VtkSeriesWriter(std::filesystem::path dir, Written written);
   void write(const VtkFrame& frame);
   std::size_t frames() const { return times_.size(); }
+  Written written() const { return {times_, grid_, zones_}; }
 
  private:
   void write_collections() const;

@@ -128,6 +128,9 @@ class LawGroup {
   // Sampled properties of local contact i, named by property_names() (for reports and files).
   virtual std::vector<double> properties(std::size_t i) const = 0;
   virtual std::span<const std::string_view> property_names() const = 0;
+  // Checkpoints: the per-contact properties and state (the parameters come from the model file).
+  virtual void save(checkpoint::OutArchive& ar) const = 0;
+  virtual void load(checkpoint::InArchive& ar) = 0;
 };
 
 // What a law accepts from the model file: each key with its unit and valid range.

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <vector>
 
+#include "vorodec/checkpoint/archive_io.hpp"
 #include "vorodec/laws/contact_law.hpp"
 #include "vorodec/model/contact_geometry.hpp"
 #include "vorodec/model/deformable_contact.hpp"
@@ -50,6 +51,13 @@ class LawGroupOf final : public LawGroup {
     return v;
   }
   std::span<const std::string_view> property_names() const override { return Law::property_names; }
+
+  void save(checkpoint::OutArchive& ar) const override {
+    ar(checkpoint::pod(props_), checkpoint::pod(state_));
+  }
+  void load(checkpoint::InArchive& ar) override {
+    ar(checkpoint::pod(props_), checkpoint::pod(state_));
+  }
 
   void rebuild(std::span<const std::int64_t> old_of_new,
                std::span<const NewContact> fresh) override {

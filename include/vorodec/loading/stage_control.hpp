@@ -28,8 +28,17 @@ class StageControl {
   void adapt(double unbalanced_force_ratio, double time_in_stage, double dt);
   // 0..1, how far the stage has come (progress bar).
   double fraction() const { return fraction_; }
+  // Pa, the highest stress of the stage's history rows, and whether the curve has passed it.
+  double peak() const { return row_peak_; }
+  bool past_peak() const { return past_peak_; }
   // Servo target of a stress-controlled stage at this time (Pa).
   double target(double time_in_stage) const;
+  // Checkpoints: what the control has learnt (the stage itself comes from the model file).
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(v0_, v_, stress0_, strain0_, v_from_, t_adapt_, t_span_, row_peak_, fraction_,
+       rows_since_peak_, held_, rising_, past_peak_);
+  }
 
  private:
   const Stage& st_;
@@ -37,7 +46,8 @@ class StageControl {
   double v_from_, t_adapt_ = 0, t_span_ = 0;  // the adaptive speed's move from v_from_ to v_
   double row_peak_ = 0, fraction_ = 0;
   long rows_since_peak_ = 0, held_ = 0;
-  bool rising_ = true;  // towards end.axial_stress from below
+  bool rising_ = true;      // towards end.axial_stress from below
+  bool past_peak_ = false;  // as judged on the last history row
 };
 
 }  // namespace vorodec::loading

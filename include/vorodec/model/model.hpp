@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "vorodec/checkpoint/archive.hpp"
 #include "vorodec/geometry/point.hpp"
 #include "vorodec/model/zoning.hpp"
 
@@ -120,6 +121,11 @@ struct Model {
   double thickness = 1.0;        // m, out of plane
   Zoning zoning;                 // gridpoints and zones of the deformable blocks
 };
+
+// Checkpoints: what a run changes (positions, velocities, scaled masses, loads, the world arrays,
+// contacts, gridpoints and zone state). Shapes and zones come again from the model file.
+void save_state(checkpoint::OutArchive& ar, const Model& m);
+void load_state(checkpoint::InArchive& ar, Model& m);
 
 // Blocks::refresh_world() and then the deformable blocks from their gridpoints.
 inline void refresh_world(Model& m) {

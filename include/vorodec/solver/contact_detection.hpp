@@ -62,6 +62,9 @@ class ContactDetector {
                         bool bond_new);
 
   double tolerance() const { return tolerance_; }
+  // The id the next created contact takes (checkpoints).
+  std::uint64_t next_id() const { return next_id_; }
+  void set_next_id(std::uint64_t id) { next_id_ = id; }
 
  private:
   double tolerance_;

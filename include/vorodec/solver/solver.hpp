@@ -77,8 +77,14 @@ class Solver {
   double contact_stiffness_on(std::size_t b) const;
   // Throws InstabilityError if the state is not finite or contacts overlap by more than d/2.
   void check_stability() const;
+  // Checkpoints: everything a step reads that an earlier step wrote, the law groups' state
+  // included. The thread parts are redone on loading, for the thread count then.
+  void save(checkpoint::OutArchive& ar) const;
+  void load(checkpoint::InArchive& ar);
 
  private:
+  template <class Archive>
+  void state(Archive& ar);
   void detect(bool bond_new);
   void compute_time_step();
   void partition();

@@ -1,0 +1,72 @@
+#pragma once
+// A run is a driver, which decides what the solver does next, and observers, which sample the
+// state when the driver says so (observers.hpp). The driver never writes a file; an observer
+// never moves a block.
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vorodec/app/simulation.hpp"
+#include "vorodec/checkpoint/archive.hpp"
+#include "vorodec/measure/specimen.hpp"
+
+namespace vorodec::app {
+
+// What observers read of a run, after a step or a stage transition.
+struct RunView {
+  const model::Model& model;
+  const solver::Solver& solver;
+  const geometry::Tessellation& specimen;
+  const measure::SpecimenState& state;
+  double platen_velocity;  // m/s, top platen, compression +
+  int stage;               // index of the current stage
+};
+
+// When to sample: a history row, an output frame (VTK and rose.csv), under this label.
+struct Sample {
+  std::string label;
+  bool row = false;
+  bool frame = false;
+};
+
+class Observers;
+
+// What a person is told of the run's progress.
+struct ProgressReport {
+  std::size_t stage = 0, stages = 1;
+  std::string stage_name;
+  long steps = 0;
+  double stress = 0;  // Pa
+  // 0..1 and monotone within the stage where its end is known ahead (a duration, a strain, a
+  // stress); NaN where it is not (a post-peak end), and then `waiting` says what is awaited.
+  double fraction = std::nan("");
+  std::string waiting;
+};
+
+// How the load path ended, for the summary.
+struct DriverOutcome {
+  int exit_code = 0;  // RunSummary::exit_code
+  std::string status = "finished";
+  double peak = 0, trough = 0;  // Pa, largest and smallest axial stress
+  std::vector<bool> stalled;    // per stage: it ended because it could not reach its target
+  std::optional<ImplicitStart> implicit_start;
+};
+
+class Driver {
+ public:
+  virtual ~Driver() = default;
+  // One solver step or one transition (a stage's start or end), telling the observers when to
+  // sample.
+  virtual void advance(Observers& observers) = 0;
+  virtual bool finished() const = 0;
+  // Between two steps, where a checkpoint can be taken and resumed from.
+  virtual bool resumable() const = 0;
+  virtual RunView view() const = 0;
+  virtual ProgressReport progress() const = 0;
+  virtual const DriverOutcome& outcome() const = 0;
+  virtual void save(checkpoint::OutArchive& ar) const = 0;
+  virtual void load(checkpoint::InArchive& ar) = 0;
+};
+
+}  // namespace vorodec::app

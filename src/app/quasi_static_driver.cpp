@@ -1,0 +1,210 @@
+#include "quasi_static_driver.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "implicit_start.hpp"
+#include "observers.hpp"
+#include "vorodec/checkpoint/archive_io.hpp"
+#include "vorodec/solver/elastic_response.hpp"
+
+namespace vorodec::app {
+
+QuasiStaticDriver::QuasiStaticDriver(const io::ModelConfig& cfg, model::Model& model,
+                                     solver::Solver& solver,
+                                     const loading::SpecimenBoundary& boundary,
+                                     const geometry::Tessellation& specimen, long step_limit,
+                                     bool from_option)
+    : cfg_(cfg),
+      model_(model),
+      solver_(solver),
+      boundary_(boundary),
+      specimen_(specimen),
+      step_limit_(step_limit),
+      limit_from_option_(from_option),
+      state_(measure::measure_specimen(model, boundary, solver)) {
+  outcome_.stalled.assign(cfg.load_path.stages.size(), false);
+  if (cfg.load_path.stages.empty()) phase_ = Phase::done;
+}
+
+RunView QuasiStaticDriver::view() const {
+  return {model_, solver_, specimen_, state_, v_, static_cast<int>(si_)};
+}
+
+void QuasiStaticDriver::advance(Observers& observers) {
+  try {
+    switch (phase_) {
+      case Phase::stage_start:
+        start_stage(observers);
+        break;
+      case Phase::stepping:
+        step(observers);
+        break;
+      case Phase::stage_end:
+        end_stage(observers);
+        break;
+      case Phase::done:
+        break;
+    }
+  } catch (const solver::InstabilityError& e) {
+    outcome_.exit_code = 3;
+    outcome_.status = fmt::format("unstable: {}", e.what());
+    restore_good_state();
+    observers.sample(view(), {"unstable", false, true});
+    phase_ = Phase::done;
+  }
+}
+
+void QuasiStaticDriver::start_stage(Observers& observers) {
+  const loading::Stage& st = stage();
+  t0_ = solver_.time();
+  stage_fraction_ = 0;
+  control_.emplace(st, v_, state_.axial_stress, state_.axial_strain);
+  observers.sample(view(), {st.name + ":start", true, false});
+  if (st.implicit_start) {
+    try {
+      outcome_.implicit_start =
+          implicit_start(model_, solver_, boundary_, st, cfg_.load_path.confining_stress);
+    } catch (const solver::ElasticResponseError& e) {
+      throw io::ModelFileError(fmt::format("{}: {}", cfg_.implicit_start_where, e.what()),
+                               fmt::format("stage[{}].implicit_start", si_), e.what());
+    }
+    state_ = measure::measure_specimen(model_, boundary_, solver_);
+    outcome_.peak = std::max(outcome_.peak, state_.axial_stress);
+    observers.sample(view(), {st.name + ":implicit", true, false});
+  }
+  phase_ = Phase::stepping;
+}
+
+void QuasiStaticDriver::step(Observers& observers) {
+  if (solver_.steps() >= step_limit_) {
+    outcome_.status = limit_from_option_ ? "stopped at --max-steps" : "step limit";
+    outcome_.exit_code = limit_from_option_ ? 0 : 4;
+    stop_ = true;
+    phase_ = Phase::stage_end;
+    return;
+  }
+  const loading::Stage& st = stage();
+  loading::StageControl& control = *control_;
+  const double ts = solver_.time() - t0_;
+  // Adaptive speed: after the ramp, every interval_steps, from the last step's forces.
+  if (st.adaptive.enabled && ts >= st.ramp_time &&
+      solver_.steps() % st.adaptive.interval_steps == 0)
+    control.adapt(solver_.unbalanced_force_ratio(), ts, solver_.dt());
+  v_ = control.platen_velocity(
+      ts, state_.axial_stress,
+      solver_.contact_stiffness_on(static_cast<std::size_t>(boundary_.top_platen())), solver_.dt(),
+      boundary_.width());
+  boundary_.set_platen_velocity(model_, v_);
+  boundary_.apply_confinement(model_, cfg_.load_path.confining_stress);
+  solver_.step();
+  state_ = measure::measure_specimen(model_, boundary_, solver_);
+  if (solver_.steps() % 100 == 0) {
+    solver_.check_stability();
+    keep_good_state();
+  }
+  outcome_.peak = std::max(outcome_.peak, state_.axial_stress);
+  outcome_.trough = std::min(outcome_.trough, state_.axial_stress);
+  const bool row = solver_.steps() % cfg_.output.history_steps == 0;
+  const bool frame = solver_.steps() % cfg_.output.vtk_steps == 0;
+  if (row || frame) observers.sample(view(), {st.name, row, frame});
+  const loading::StageOutcome outcome =
+      control.judge({solver_.time() - t0_, state_.axial_stress, state_.axial_strain, row});
+  stage_fraction_ = std::max(stage_fraction_, control.fraction());
+  if (outcome == loading::StageOutcome::stalled) {
+    outcome_.stalled[si_] = true;
+    resume_at_ = st.block_end;
+  }
+  if (outcome != loading::StageOutcome::running) phase_ = Phase::stage_end;
+}
+
+void QuasiStaticDriver::end_stage(Observers& observers) {
+  const loading::Stage& st = stage();
+  const std::string label = st.name + (outcome_.stalled[si_] ? ":stalled" : ":end");
+  observers.sample(view(), {label, true, true});
+  std::size_t next = si_ + 1;
+  if (resume_at_ >= 0 && st.phase == loading::CyclePhase::unloading) {
+    next = static_cast<std::size_t>(resume_at_);
+    resume_at_ = -1;
+  }
+  if (stop_ || next >= cfg_.load_path.stages.size()) {
+    phase_ = Phase::done;
+    return;
+  }
+  si_ = next;
+  phase_ = Phase::stage_start;
+}
+
+void QuasiStaticDriver::keep_good_state() {
+  good_x_ = model_.blocks.x;
+  good_y_ = model_.blocks.y;
+  good_t_ = model_.blocks.theta;
+  good_gx_ = model_.zoning.x;
+  good_gy_ = model_.zoning.y;
+}
+
+void QuasiStaticDriver::restore_good_state() {
+  if (good_x_.empty()) return;
+  model_.blocks.x = good_x_;
+  model_.blocks.y = good_y_;
+  model_.blocks.theta = good_t_;
+  model_.zoning.x = good_gx_;
+  model_.zoning.y = good_gy_;
+  model::refresh_world(model_);  // the frame and the damage measures read world positions
+}
+
+ProgressReport QuasiStaticDriver::progress() const {
+  ProgressReport r;
+  r.stage = si_;
+  r.stages = cfg_.load_path.stages.size();
+  r.steps = solver_.steps();
+  r.stress = state_.axial_stress;
+  if (phase_ == Phase::done || si_ >= r.stages) return r;
+  const loading::Stage& st = stage();
+  r.stage_name = st.name;
+  if (std::isnan(st.end.post_peak_fraction)) {
+    r.fraction = stage_fraction_;
+    return r;
+  }
+  // The end waits for the stress to fall after a peak no one can know ahead: no percentage.
+  const double peak = control_ ? control_->peak() : 0.0;
+  if (control_ && control_->past_peak())
+    r.waiting = fmt::format("post-peak: stress {:.2f} of {:.2f} MPa target",
+                            state_.axial_stress / 1e6, st.end.post_peak_fraction * peak / 1e6);
+  else
+    r.waiting = fmt::format("towards the peak: highest so far {:.2f} MPa",
+                            std::max(peak, state_.axial_stress) / 1e6);
+  return r;
+}
+
+template <class Archive>
+void QuasiStaticDriver::state(Archive& ar) {
+  using checkpoint::pod;
+  int phase = static_cast<int>(phase_);
+  std::vector<std::uint8_t> stalled(outcome_.stalled.begin(), outcome_.stalled.end());
+  bool control = control_.has_value();
+  ar(phase, si_, t0_, control, checkpoint::bytes(state_), v_, stage_fraction_);
+  if constexpr (Archive::is_loading::value) {
+    if (si_ >= cfg_.load_path.stages.size())
+      throw std::runtime_error("the checkpoint's stage is not in the model file");
+    control_.reset();
+    if (control) control_.emplace(stage(), 0.0, 0.0, 0.0);  // its state follows
+  }
+  if (control) ar(*control_);
+  ar(pod(good_x_), pod(good_y_), pod(good_t_), pod(good_gx_), pod(good_gy_), resume_at_, stop_);
+  ar(outcome_.exit_code, outcome_.status, outcome_.peak, outcome_.trough, pod(stalled),
+     outcome_.implicit_start);
+  phase_ = static_cast<Phase>(phase);
+  outcome_.stalled.assign(stalled.begin(), stalled.end());
+}
+
+void QuasiStaticDriver::save(checkpoint::OutArchive& ar) const {
+  const_cast<QuasiStaticDriver*>(this)->state(ar);  // saving only reads
+}
+
+void QuasiStaticDriver::load(checkpoint::InArchive& ar) {
+  state(ar);
+}
+
+}  // namespace vorodec::app

@@ -1,0 +1,38 @@
+#include <stdexcept>
+
+#include "vorodec/checkpoint/archive_io.hpp"
+#include "vorodec/model/model.hpp"
+
+namespace vorodec::model {
+
+namespace {
+
+// One list for both directions, so a saved field is a loaded field.
+template <class Archive, class M>
+void state(Archive& ar, M& m) {
+  using checkpoint::pod;
+  auto& b = m.blocks;
+  ar(pod(b.x), pod(b.y), pod(b.theta), pod(b.vx), pod(b.vy), pod(b.omega), pod(b.mass),
+     pod(b.inertia), pod(b.fx), pod(b.fy), pod(b.moment), pod(b.prescribed));
+  // The world arrays are those of the last step's start, which outputs read: saved, not redone.
+  ar(pod(b.cos_t), pod(b.sin_t), pod(b.world), pod(b.kin));
+  ar(pod(m.contacts));
+  auto& z = m.zoning;
+  ar(pod(z.x), pod(z.y), pod(z.vx), pod(z.vy), pod(z.mass), pod(z.fx), pod(z.fy), pod(z.cfx),
+     pod(z.cfy), pod(z.prescribed), pod(z.stress), pod(z.strain), pod(z.zone_force));
+}
+
+}  // namespace
+
+void save_state(checkpoint::OutArchive& ar, const Model& m) {
+  state(ar, m);
+}
+
+void load_state(checkpoint::InArchive& ar, Model& m) {
+  const std::size_t blocks = m.blocks.size(), gridpoints = m.zoning.gridpoints();
+  state(ar, m);
+  if (m.blocks.size() != blocks || m.zoning.gridpoints() != gridpoints)
+    throw std::runtime_error("the checkpoint's model has other blocks or gridpoints");
+}
+
+}  // namespace vorodec::model

@@ -1,0 +1,32 @@
+// Solver::save and Solver::load: one field list for both directions (Solver::state).
+#include "vorodec/checkpoint/archive_io.hpp"
+#include "vorodec/solver/solver.hpp"
+
+namespace vorodec::solver {
+
+template <class Archive>
+void Solver::state(Archive& ar) {
+  using checkpoint::bytes;
+  using checkpoint::pod;
+  ar(pod(law_begin_), pod(deformable_begin_), pod(zfx_), pod(zfy_), pod(forces_),
+     pod(gather_begin_), pod(gather_), pod(sums_), pod(x_detect_), pod(y_detect_), pod(t_detect_),
+     pod(cracks_), bytes(energy_));
+  ar(dt_, critical_dt_, time_, fixed_step_warned_, steps_, last_detection_, initial_bonded_,
+     detections_);
+  std::uint64_t next_id = detector_.next_id();
+  ar(next_id);
+  detector_.set_next_id(next_id);
+}
+
+void Solver::save(checkpoint::OutArchive& ar) const {
+  const_cast<Solver*>(this)->state(ar);  // saving only reads
+  for (const auto& law : laws_) law->save(ar);
+}
+
+void Solver::load(checkpoint::InArchive& ar) {
+  state(ar);
+  for (auto& law : laws_) law->load(ar);
+  partition();
+}
+
+}  // namespace vorodec::solver
