@@ -95,3 +95,201 @@ TEST(Resume, DeformableRunMatchesTheUninterruptedRun) {
 }
 
 }  // namespace
+
+namespace {
+
+// The lines of a text file.
+std::vector<std::string> lines_of(const fs::path& f) {
+  std::vector<std::string> out;
+  std::istringstream in(slurp(f));
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+std::size_t fields(const std::string& line) {
+  return static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// Every file a run left in `dir` parses: CSV files hold whole rows of the header's width, VTK
+// files are complete XML, .pvd collections name frames that exist, summary.json is whole.
+void expect_parseable(const fs::path& dir) {
+  for (const fs::path& rel : files_under(dir)) {
+    const fs::path f = dir / rel;
+    const std::string text = slurp(f);
+    const std::string ext = f.extension().string();
+    if (ext == ".csv") {
+      EXPECT_TRUE(ends_with(text, "\n")) << rel << " ends in a partial row";
+      const auto lines = lines_of(f);
+      ASSERT_FALSE(lines.empty()) << rel;
+      for (const std::string& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << rel << ": " << l;
+    } else if (ext == ".vtp" || ext == ".vti" || ext == ".pvd") {
+      EXPECT_TRUE(text.rfind("<?xml", 0) == 0 || text.rfind("<VTKFile", 0) == 0) << rel;
+      EXPECT_TRUE(ends_with(text, "</VTKFile>\n")) << rel << " is not whole";
+      if (ext == ".pvd")
+        for (std::size_t at = text.find("file=\""); at != std::string::npos;
+             at = text.find("file=\"", at + 1)) {
+          const auto begin = at + 6;
+          const std::string name = text.substr(begin, text.find('"', begin) - begin);
+          EXPECT_TRUE(fs::exists(f.parent_path() / name)) << rel << " names " << name;
+        }
+    } else if (rel == "summary.json") {
+      EXPECT_EQ(text.rfind("{", 0), 0u);
+      EXPECT_TRUE(ends_with(text, "}\n")) << "summary.json is not whole";
+    }
+  }
+}
+
+// Starts `vorodec <args>` and returns its pid.
+pid_t start_vorodec(const std::string& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = "exec " + std::string(VORODEC_BINARY) + " " + args + " >/dev/null 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+void kill_hard(pid_t pid) {
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+}
+
+// The marble UCS model, short, with a checkpoint every 1000 steps and frames every 1000.
+std::string marble_args(const fs::path& out) {
+  return std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml --threads 1 --max-steps 6000" +
+         " --set output.checkpoint_steps=1000 --set output.vtk_steps=1000 --out " + out.string();
+}
+
+}  // namespace
+
+TEST(KilledRun, LeavesOnlyFilesThatParseAtAnyMoment) {
+  for (const int ms : {300, 1200, 2500, 4000}) {
+    const fs::path out = out_dir("killed_" + std::to_string(ms));
+    const pid_t pid = start_vorodec("run " + marble_args(out));
+    std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+    kill_hard(pid);
+    if (fs::exists(out)) expect_parseable(out);
+  }
+}
+
+TEST(KilledRun, ResumesFromItsLastCheckpointToTheUninterruptedResult) {
+  const fs::path straight = out_dir("kill_straight"), killed = out_dir("kill_resumed");
+  ASSERT_EQ(run_vorodec("run " + marble_args(straight)), 0);
+  const pid_t pid = start_vorodec("run " + marble_args(killed));
+  // Killed once a checkpoint exists and the run has gone on past it.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (!fs::exists(killed / "checkpoint.vck") && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill_hard(pid);
+  expect_parseable(killed);
+  ASSERT_TRUE(fs::exists(killed / "checkpoint.vck")) << "the run ended before it was killed";
+  EXPECT_EQ(run_vorodec("resume " + killed.string()), 0);
+  expect_same_files(straight, killed);
+}
+
+namespace {
+
+// A run of e2e_small stopped at step 1000, its checkpoint ready to be spoilt.
+fs::path stopped_run(const std::string& name, const std::string& model) {
+  const fs::path out = out_dir(name);
+  EXPECT_EQ(run_vorodec("run " + model + " --threads 1 --no-vtk --stop-at-step 1000 --out " +
+                        out.string()),
+            kStopped);
+  return out;
+}
+
+void expect_refused(const fs::path& dir, const std::string& why) {
+  const Outcome o = run_capture("resume " + dir.string());
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find(why), std::string::npos) << o.output;
+}
+
+}  // namespace
+
+TEST(ResumeRefuses, AFolderWithoutACheckpoint) {
+  const fs::path out = out_dir("no_checkpoint");
+  fs::create_directories(out);
+  expect_refused(out, "no checkpoint there");
+}
+
+TEST(ResumeRefuses, ATruncatedCheckpoint) {
+  const fs::path out = stopped_run("truncated", kModels + "e2e_small.toml");
+  const fs::path f = out / "checkpoint.vck";
+  fs::resize_file(f, fs::file_size(f) / 2);
+  expect_refused(out, "truncated");
+}
+
+TEST(ResumeRefuses, ACorruptCheckpoint) {
+  const fs::path out = stopped_run("corrupt", kModels + "e2e_small.toml");
+  const fs::path f = out / "checkpoint.vck";
+  std::string bytes = slurp(f);
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x5a);
+  std::ofstream(f, std::ios::binary | std::ios::trunc) << bytes;
+  expect_refused(out, "corrupt");
+}
+
+TEST(ResumeRefuses, AFileThatIsNoCheckpoint) {
+  const fs::path out = out_dir("not_checkpoint");
+  fs::create_directories(out);
+  std::ofstream(out / "checkpoint.vck") << "history,of,something\n1,2,3\n";
+  expect_refused(out, "not a vorodec checkpoint");
+}
+
+TEST(ResumeRefuses, ARunWhoseModelFileChanged) {
+  const fs::path dir = out_dir("changed_model");
+  fs::create_directories(dir);
+  const fs::path model = dir / "model.toml";
+  fs::copy_file(kModels + "e2e_small.toml", model);
+  const fs::path out = stopped_run("changed_model/out", model.string());
+  std::ofstream(model, std::ios::app) << "# edited\n";
+  expect_refused(out, "changed since the checkpoint");
+}
+
+TEST(ResumeRefuses, ACheckpointOfAnotherVorodecVersion) {
+  const fs::path out = out_dir("other_version");
+  fs::create_directories(out);
+  vorodec::checkpoint::Contents c;
+  c.header.vorodec_version = "0.0.1-elsewhere";
+  vorodec::checkpoint::write_checkpoint(out / "checkpoint.vck", c);
+  expect_refused(out, "written by vorodec 0.0.1-elsewhere");
+}
+
+TEST(BatchRunAgain, KeepsFinishedCasesResumesStoppedOnesAndRunsMissingOnes) {
+  const std::string batch = kModels + "batch_small.toml";
+  const fs::path first = out_dir("batch_first"), again = out_dir("batch_again");
+  ASSERT_EQ(run_vorodec("batch " + batch + " --no-vtk --jobs 1 --out " + first.string()), 5);
+  ASSERT_EQ(run_vorodec("batch " + batch + " --no-vtk --jobs 1 --out " + again.string()), 5);
+  const std::string kept_log = slurp(again / "small_seed=11" / "log.txt");
+  const auto rows_before = lines_of(again / "results.csv");
+  // small_seed=12 was stopped at step 2000 (as a signal would), step_limit_seed=12 never ran.
+  fs::remove(again / "small_seed=12" / "case_outcome.txt");
+  fs::remove(again / "small_seed=12" / "summary.json");
+  fs::remove_all(again / "step_limit_seed=12");
+  const std::string command = slurp(again / "small_seed=12" / "case_command.txt");
+  std::vector<std::string> args;
+  std::istringstream lines(command);
+  for (std::string a; std::getline(lines, a);) args.push_back("'" + a + "'");
+  std::string stop;
+  for (std::size_t k = 1; k < args.size(); ++k) stop += " " + args[k];
+  ASSERT_EQ(run_vorodec(stop + " --stop-at-step 2000"), kStopped);
+  ASSERT_EQ(run_vorodec("batch " + batch + " --no-vtk --jobs 1 --out " + again.string()), 5);
+  EXPECT_EQ(slurp(again / "small_seed=11" / "log.txt"), kept_log) << "a finished case ran again";
+  const auto rows_first = lines_of(first / "results.csv"),
+             rows_again = lines_of(again / "results.csv");
+  ASSERT_EQ(rows_first.size(), rows_again.size());
+  // The same results; the wall time (last column) is the run's own.
+  for (std::size_t r = 0; r < rows_first.size(); ++r)
+    EXPECT_EQ(rows_first[r].substr(0, rows_first[r].rfind(',')),
+              rows_again[r].substr(0, rows_again[r].rfind(',')));
+  for (const std::size_t kept : {1, 3})  // small_seed=11, step_limit_seed=11: the same rows
+    EXPECT_EQ(rows_before[kept], rows_again[kept]);
+  for (const char* c : {"small_seed=12", "step_limit_seed=12"})
+    EXPECT_EQ(slurp(first / c / "history.csv"), slurp(again / c / "history.csv")) << c;
+}

@@ -10,10 +10,14 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
 #include "cluster.hpp"
+#include "vorodec/app/simulation.hpp"
+#include "vorodec/checkpoint/checkpoint_file.hpp"
+#include "vorodec/io/atomic_file.hpp"
 #include "vorodec/io/batch_file.hpp"
 
 extern char** environ;
@@ -70,7 +74,48 @@ std::vector<std::string> case_command(const io::BatchCase& c, const fs::path& di
   return args;
 }
 
-pid_t spawn_case(const std::vector<std::string>& args, const fs::path& dir) {
+std::string joined(const std::vector<std::string>& args) {
+  std::string s;
+  for (const std::string& a : args) s += a + '\n';
+  return s;
+}
+
+// In a case's folder: the command it was started with, and once it ended for good (any exit but
+// a stop for resume or a signal), its exit code and wall time.
+constexpr const char* kCaseCommand = "case_command.txt";
+constexpr const char* kCaseOutcome = "case_outcome.txt";
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+bool ended_for_good(int exit_code) {
+  return exit_code != kStoppedForResume && exit_code < 128;
+}
+
+// The outcome of the case in `dir` if it ran to its end with this very command.
+std::optional<Outcome> finished_before(const fs::path& dir, const std::string& command) {
+  if (!fs::exists(dir / kCaseOutcome) || read_text(dir / kCaseCommand) != command) return {};
+  std::istringstream in(read_text(dir / kCaseOutcome));
+  Outcome o;
+  if (!(in >> o.exit_code >> o.wall_seconds) || !ended_for_good(o.exit_code)) return {};
+  return o;
+}
+
+// s, the wall time a stopped case's checkpoint records (0 if it cannot be read: the resume
+// will say why).
+double earlier_wall_seconds(const fs::path& dir) {
+  try {
+    return checkpoint::read_checkpoint(dir / kCheckpointFile).header.wall_seconds;
+  } catch (const checkpoint::CheckpointError&) {
+    return 0.0;
+  }
+}
+
+pid_t spawn_case(const std::vector<std::string>& args, const fs::path& dir, bool append_log) {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -78,7 +123,7 @@ pid_t spawn_case(const std::vector<std::string>& args, const fs::path& dir) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+                                   O_WRONLY | O_CREAT | (append_log ? O_APPEND : O_TRUNC), 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = -1;
   const int err = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
@@ -99,7 +144,12 @@ std::map<std::size_t, Outcome> run_cases(const io::BatchPlan& plan,
                                          const std::string& who) {
   using clock = std::chrono::steady_clock;
   std::map<std::size_t, Outcome> done;
-  std::map<pid_t, std::pair<std::size_t, clock::time_point>> running;
+  struct Running {
+    std::size_t i;
+    clock::time_point start;
+    double earlier_seconds;  // of the case's parts before it was resumed
+  };
+  std::map<pid_t, Running> running;
   std::size_t next = 0;
   while (next < mine.size() || !running.empty()) {
     while (next < mine.size() && running.size() < static_cast<std::size_t>(jobs)) {
@@ -107,18 +157,42 @@ std::map<std::size_t, Outcome> run_cases(const io::BatchPlan& plan,
       const io::BatchCase& c = plan.cases[i];
       const fs::path dir = out / c.name;
       fs::create_directories(dir);
-      fs::remove(dir / "summary.json");  // never report a previous batch's result
-      running[spawn_case(case_command(c, dir, options), dir)] = {i, clock::now()};
+      const std::vector<std::string> command = case_command(c, dir, options);
+      // A batch run again on its folder continues: finished cases are kept as they are,
+      // stopped ones resume from their checkpoints, the others run.
+      if (const std::optional<Outcome> o = finished_before(dir, joined(command))) {
+        done[i] = *o;
+        fmt::print("{}case {}/{} {}: kept, it finished before (exit {})\n", who, i + 1,
+                   plan.cases.size(), c.name, o->exit_code);
+        continue;
+      }
+      const bool resume =
+          fs::exists(dir / kCheckpointFile) && read_text(dir / kCaseCommand) == joined(command);
+      fs::remove(dir / kCaseOutcome);
+      if (!resume) fs::remove(dir / "summary.json");  // never report a previous batch's result
+      io::write_file_atomically(dir / kCaseCommand, joined(command));
+      const std::vector<std::string> args =
+          resume ? std::vector<std::string>{"vorodec", "resume", dir.string(), "--threads", "1"}
+                 : command;
+      // A resumed case's wall time counts its earlier parts, as its summary does.
+      const double earlier = resume ? earlier_wall_seconds(dir) : 0.0;
+      running[spawn_case(args, dir, resume)] = {i, clock::now(), earlier};
     }
     int status = 0;
     const pid_t pid = waitpid(-1, &status, 0);
     if (pid < 0) throw std::runtime_error("lost track of the running cases");
     const auto it = running.find(pid);
     if (it == running.end()) continue;
-    const auto [i, start] = it->second;
+    const Running r = it->second;
     running.erase(it);
-    Outcome o{exit_code_of(status), std::chrono::duration<double>(clock::now() - start).count()};
+    const std::size_t i = r.i;
+    Outcome o{exit_code_of(status),
+              r.earlier_seconds + std::chrono::duration<double>(clock::now() - r.start).count()};
     done[i] = o;
+    const fs::path dir = out / plan.cases[i].name;
+    if (ended_for_good(o.exit_code))
+      io::write_file_atomically(dir / kCaseOutcome,
+                                fmt::format("{} {:.17g}\n", o.exit_code, o.wall_seconds));
     fmt::print("{}case {}/{} {}: exit {} after {:.1f} s\n", who, i + 1, plan.cases.size(),
                plan.cases[i].name, o.exit_code, o.wall_seconds);
     std::fflush(stdout);
@@ -219,9 +293,9 @@ int run_batch(const BatchOptions& options) {
       all_ok &= line.substr(tab1 + 1, tab2 - tab1 - 1) == "0";
     }
   }
-  std::ofstream table(out / "results.csv");
-  table << header(plan);
-  for (const auto& [i, r] : ordered) table << r << '\n';
+  std::string table = header(plan);
+  for (const auto& [i, r] : ordered) table += r + '\n';
+  io::write_file_atomically(out / "results.csv", table);
   fs::copy_file(options.batch_file, out / "batch.toml", fs::copy_options::overwrite_existing, ec);
   fmt::print("results.csv: {} rows in {}/\n", ordered.size(), out.string());
   return all_ok ? 0 : some_case_failed;
