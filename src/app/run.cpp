@@ -105,13 +105,13 @@ struct Run {
 
   RunSummary execute() {
     while (!driver.finished()) {
-      driver.advance(observers);
-      observers.after_advance(driver.view());
       if (driver.resumable()) {
         const auto [write, stop] = checkpoint_due();
         if (write) write_checkpoint();
         if (stop) return stopped();
       }
+      driver.advance(observers);
+      observers.after_advance(driver.view());
       if (progress.due()) progress.show(driver.progress());
     }
     progress.finish();
@@ -148,10 +148,19 @@ void stop_on_signals() {
   sigaction(SIGTERM, &sa, nullptr);
 }
 
+// What a kill during a whole-file write left: the temporary names (io/atomic_file.hpp).
+void remove_partial_files(const fs::path& out) {
+  std::error_code ec;
+  for (const fs::path& dir : {out, out / "vtk"})
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.path().extension() == ".tmp") fs::remove(e.path(), ec);
+}
+
 RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& specimen,
                      const RunOptions& options, const std::vector<io::Override>& overrides) {
   std::error_code ec;
   fs::remove(options.out / kCheckpointFile, ec);  // another run's: never resume it by mistake
+  remove_partial_files(options.out);
   Run run(cfg, specimen, options);
   run.header = {VORODEC_VERSION,    fs::absolute(cfg.file).string(),
                 flatten(overrides), hash_of(cfg, overrides),
@@ -178,6 +187,7 @@ RunSummary resume_run(const fs::path& dir, long stop_at_step, bool progress) {
   Run run(cfg, specimen, options);
   run.header = h;
   run.wall_before = h.wall_seconds;
+  remove_partial_files(dir);
   for (const char* end : {"summary.json", "cycles.csv"}) {  // a later end than the checkpoint's
     std::error_code ec;
     fs::remove(dir / end, ec);
