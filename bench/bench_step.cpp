@@ -1,12 +1,17 @@
 // The rigid-block Mohr-Coulomb step (geometry + laws + forces + integration, detection amortised
 // as it runs) on the default model and on larger specimens of the same outline's block size.
-// Reports contact updates per second (cu/s) per thread count and bytes per contact.
+// Reports contact updates per second (cu/s) per thread count and bytes per contact; and what a
+// checkpoint of such a model costs to write.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
 #include <cmath>
+#include <filesystem>
+#include <sstream>
 
 #include "vorodec/app/simulation.hpp"
+#include "vorodec/checkpoint/archive_io.hpp"
+#include "vorodec/checkpoint/checkpoint_file.hpp"
 #include "vorodec/loading/boundary.hpp"
 
 using namespace vorodec;
@@ -101,6 +106,34 @@ void BM_CopiesStep(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(updates), benchmark::Counter::kIsRate);
 }
 
+// A checkpoint's model and solver part (blocks, contacts, laws, sums: all but the load path's and
+// the outputs' few values) archived and written to disk (temporary name, fsync, rename).
+void BM_CheckpointWrite(benchmark::State& state) {
+  const io::ModelConfig cfg = scaled_model(static_cast<int>(state.range(0)));
+  const auto tess = app::make_specimen(cfg);
+  app::PreparedModel pm = app::prepare_model(cfg, tess);
+  const loading::SpecimenBoundary boundary(*pm.model);
+  boundary.set_platen_velocity(*pm.model, 0.05);
+  for (int i = 0; i < 300; ++i) pm.solver->step();
+  const auto file = std::filesystem::temp_directory_path() / "vorodec_bench_checkpoint.vck";
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    std::ostringstream out;
+    {
+      checkpoint::OutArchive ar(out);
+      model::save_state(ar, *pm.model);
+      pm.solver->save(ar);
+    }
+    checkpoint::Contents c{{}, out.str()};
+    bytes = c.state.size();
+    checkpoint::write_checkpoint(file, c);
+  }
+  std::filesystem::remove(file);
+  state.counters["MB"] = static_cast<double>(bytes) / 1e6;
+  state.counters["bytes/block"] =
+      static_cast<double>(bytes) / static_cast<double>(pm.model->blocks.size());
+}
+
 void BM_DefaultModelStep(benchmark::State& state) {
   run_steps(state, default_model());
 }
@@ -135,4 +168,5 @@ BENCHMARK(BM_CopiesStep)
     ->ArgsProduct({{10, 100}, {1}, {2, 4, 8}})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CheckpointWrite)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

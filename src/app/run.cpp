@@ -55,6 +55,9 @@ struct Run {
   Clock::time_point wall0 = Clock::now(), last_checkpoint = wall0;
   double wall_before = 0;  // s, of the run's earlier parts (before a resume)
   long checkpoint_step = 0;
+  int checkpoints = 0;  // written by this process, their wall time (s) and the last one's size
+  double checkpoint_seconds = 0;
+  std::size_t checkpoint_bytes = 0;
 
   Run(const io::ModelConfig& c, const geometry::Tessellation& t, const RunOptions& o)
       : cfg(c),
@@ -72,6 +75,7 @@ struct Run {
   }
 
   void write_checkpoint() {
+    const auto start = Clock::now();
     observers.flush();
     std::ostringstream state;
     {
@@ -84,7 +88,11 @@ struct Run {
     header.step = prepared.solver->steps();
     header.time = prepared.solver->time();
     header.wall_seconds = wall_seconds();
-    checkpoint::write_checkpoint(options.out / kCheckpointFile, {header, state.str()});
+    const checkpoint::Contents contents{header, state.str()};
+    checkpoint::write_checkpoint(options.out / kCheckpointFile, contents);
+    ++checkpoints;
+    checkpoint_bytes = contents.state.size();
+    checkpoint_seconds += std::chrono::duration<double>(Clock::now() - start).count();
     last_checkpoint = Clock::now();
     checkpoint_step = prepared.solver->steps();
   }
@@ -103,6 +111,13 @@ struct Run {
     return {stop || periodic, stop};
   }
 
+  // What the checkpoints cost, on stderr (not in summary.json: a resumed run writes others).
+  void report_checkpoints() const {
+    if (checkpoints > 0)
+      fmt::print(stderr, "checkpoints: {} written in {:.3f} s, {:.1f} MB each\n", checkpoints,
+                 checkpoint_seconds, static_cast<double>(checkpoint_bytes) / 1e6);
+  }
+
   RunSummary execute() {
     while (!driver.finished()) {
       if (driver.resumable()) {
@@ -115,6 +130,7 @@ struct Run {
       if (progress.due()) progress.show(driver.progress());
     }
     progress.finish();
+    report_checkpoints();
     observers.flush();
     RunSummary s =
         write_results(cfg, driver.view(), curve, driver.outcome(), wall_seconds(), options.out);
@@ -125,6 +141,7 @@ struct Run {
 
   RunSummary stopped() {
     progress.finish();
+    report_checkpoints();
     RunSummary s;
     s.exit_code = kStoppedForResume;
     const int sig = stop_signal.load();
