@@ -75,12 +75,13 @@ double TomlSection::non_negative(std::string_view key, double fallback) {
   return v;
 }
 
-long TomlSection::integer(std::string_view key, long fallback, long min) {
+long TomlSection::integer(std::string_view key, long fallback, long min, long max) {
   const toml::node* n = node(key);
   if (!n) return fallback;
   const auto v = n->value_exact<std::int64_t>();
   if (!v) fail(key, "must be an integer");
   if (*v < min) fail(key, fmt::format("must be >= {} (got {})", min, *v));
+  if (*v > max) fail(key, fmt::format("must be <= {} (got {})", max, *v));
   return static_cast<long>(*v);
 }
 

@@ -3,6 +3,7 @@
 // (a misspelled key) is reported with its line. Every error names file, key and line.
 #include <toml++/toml.h>
 
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -19,7 +20,9 @@ class TomlSection {
   double number(std::string_view key, double fallback);  // fallback NaN: required
   double positive(std::string_view key, double fallback);
   double non_negative(std::string_view key, double fallback);
-  long integer(std::string_view key, long fallback, long min);
+  // An integer in [min, max]; keys stored in an int pass max <= INT_MAX.
+  long integer(std::string_view key, long fallback, long min,
+               long max = std::numeric_limits<long>::max());
   std::string string(std::string_view key, const std::string* fallback);
   bool boolean(std::string_view key, bool fallback);
   std::vector<double> numbers(std::string_view key);  // a required non-empty array of numbers
