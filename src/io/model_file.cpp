@@ -238,12 +238,11 @@ std::size_t mineral_index(TomlSection& sec, std::string_view key, std::string_vi
   sec.fail(key, fmt::format("unknown mineral '{}'", name));
 }
 
-// A law that starts from `base` and replaces the keys `over` gives.
+// A law that starts from `base` and replaces the keys `over` gives (read in place: a merged copy
+// of the tables would lose every value's file and line).
 LawChoice read_law_over(const toml::table& base, const toml::table& over, const std::string& path,
                         const std::string& file) {
-  toml::table merged = base;
-  for (const auto& [key, node] : over) merged.insert_or_assign(key, node);
-  TomlSection sec(merged, path, file);
+  TomlSection sec(over, path, file, &base);
   LawChoice law = read_law(sec, "mohr_coulomb");
   sec.finish();
   return law;
@@ -446,14 +445,15 @@ toml::table parse(const std::filesystem::path& file) {
   }
 }
 
-// Tables merge key by key; any other value (arrays such as [[stage]] included) replaces.
-void merge_into(toml::table& base, const toml::table& over) {
-  for (const auto& [key, node] : over) {
+// Tables merge key by key; any other value (arrays such as [[stage]] included) replaces. The
+// nodes of `over` are moved, not copied: a copied toml++ node loses its file and line.
+void merge_into(toml::table& base, toml::table&& over) {
+  for (auto&& [key, node] : over) {
     toml::node* old = base.get(key.str());
     if (old && old->is_table() && node.is_table())
-      merge_into(*old->as_table(), *node.as_table());
+      merge_into(*old->as_table(), std::move(*node.as_table()));
     else
-      base.insert_or_assign(key, node);
+      base.insert_or_assign(key, std::move(node));
   }
 }
 
@@ -473,7 +473,7 @@ toml::table load(const std::filesystem::path& file, int depth) {
         depth >= 8 ? "more than 8 nested base files" : "no such file: " + path.string()));
   toml::table merged = load(path, depth + 1);
   t.erase("base");
-  merge_into(merged, t);
+  merge_into(merged, std::move(t));
   return merged;
 }
 
