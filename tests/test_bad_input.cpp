@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -113,10 +114,105 @@ TEST(BadInput, TomlSyntaxErrorGivesLine) {
 }
 
 TEST(BadInput, ImpossibleGeometryIsReportedAgainstTheSpecimenTable) {
+  // 3 mm passes the model checks (blocks of sqrt(area / 60) = 3.65 mm) but no tessellation keeps
+  // every block when edges that short are collapsed.
   EXPECT_TRUE(
       rejected("geometry",
-               replace(good_model, "block_count = 60", "block_count = 60\nmin_edge_length = 0.05"),
+               replace(good_model, "block_count = 60", "block_count = 60\nmin_edge_length = 0.003"),
                "[specimen]", 2, "impossible geometry"));
+}
+
+// The lengths of the specimen are checked against one another before anything is tessellated.
+
+TEST(BadInput, TinyDiscDiameterIsRefusedAtOnce) {
+  const std::string disc = replace(
+      replace(good_model, "width = 0.02\nheight = 0.04", "shape = \"disc\"\ndiameter = 1e-300"),
+      "block_count = 60", "block_count = 60\nmin_edge_length = 2.5e-4");
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_TRUE(rejected("tiny_disc", disc, "specimen.diameter", 4,
+                       "must be between 1e-06 m and 1000 m (got 1e-300 m)"));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+TEST(BadInput, HugeSpecimenWidthIsRefused) {
+  EXPECT_TRUE(rejected("huge_width", replace(good_model, "width = 0.02", "width = 1e300"),
+                       "specimen.width", 3, "must be between 1e-06 m and 1000 m"));
+}
+
+TEST(BadInput, SpecimenNarrowerThanItsBlocksIsRefused) {
+  EXPECT_TRUE(rejected("narrow", replace(good_model, "width = 0.02", "width = 2e-5"),
+                       "specimen.width", 3, "must be larger than the blocks' mean edge"));
+}
+
+TEST(BadInput, MoreThanAMillionBlocksAreRefusedBeforeTessellating) {
+  EXPECT_TRUE(rejected("block_count",
+                       replace(good_model, "block_count = 60", "block_count = 2000000"),
+                       "specimen.block_count", 5, "must be <= 1000000"));
+  EXPECT_TRUE(rejected("mean_edge",
+                       replace(good_model, "block_count = 60", "mean_edge_length = 1e-5"),
+                       "specimen.mean_edge_length", 5, "more than the 1000000 allowed"));
+}
+
+TEST(BadInput, MinimumEdgeLongerThanTheBlocksIsRefusedByKey) {
+  EXPECT_TRUE(
+      rejected("min_edge",
+               replace(good_model, "block_count = 60", "block_count = 60\nmin_edge_length = 0.05"),
+               "specimen.min_edge_length", 6,
+               "must be shorter than the block size sqrt(area / block_count) = 3.651 mm"));
+}
+
+TEST(BadInput, RoundingLengthOverHalfTheBlockSizeIsRefused) {
+  EXPECT_TRUE(
+      rejected("rounding",
+               replace(good_model, "[[stage]]\n", "[contact]\nrounding_length = 2e-3\n[[stage]]\n"),
+               "contact.rounding_length", 15, "must be shorter than half of the block size"));
+}
+
+TEST(BadInput, ContactToleranceLongerThanTheBlocksIsRefused) {
+  EXPECT_TRUE(rejected(
+      "tolerance", replace(good_model, "[[stage]]\n", "[contact]\ntolerance = 0.01\n[[stage]]\n"),
+      "contact.tolerance", 15, "must be shorter than the block size"));
+}
+
+TEST(BadInput, LloydIterationsBeyondTheLimitAreRefused) {
+  EXPECT_TRUE(rejected(
+      "lloyd",
+      replace(good_model, "block_count = 60", "block_count = 60\nlloyd_iterations = 100000"),
+      "specimen.lloyd_iterations", 6, "must be <= 100"));
+}
+
+TEST(BadInput, TooFineZonesAndDamageGridAreRefused) {
+  EXPECT_TRUE(
+      rejected("fine_zones",
+               replace(good_model, "density = 2600",
+                       "density = 2600\ndeformable = true\nzone_size = 1e-6\nE = 40e9\nnu = 0.2"),
+               "blocks.zone_size", 9, "more than the 10000000 allowed"));
+  EXPECT_TRUE(rejected("fine_damage_grid",
+                       replace(good_model, "end_axial_strain = 0.001",
+                               "end_axial_strain = 0.001\n[output]\ndamage_grid_cell = 1e-6"),
+                       "output.damage_grid_cell", 18, "more than the 1000000 allowed"));
+}
+
+TEST(BadInput, CycleCountBeyondTheLimitIsRefused) {
+  const std::string cyclic =
+      "[[stage]]\ncontrol = \"cyclic\"\nreference_peak = 40e6\nfirst_upper_fraction = 0.2\n"
+      "upper_increment_fraction = 0.1\ncycles = 2147483648\nplaten_velocity = 0.05\n"
+      "unloading_rate = 1e9\n";
+  EXPECT_TRUE(rejected("cycles", replace(good_model, "[[stage]]\n", cyclic + "[[stage]]\n"),
+                       "stage[0].cycles", 19, "must be <= 10000"));
+}
+
+TEST(BadInput, WeibullShapeTooSmallForItsGammaFunctionIsRefused) {
+  EXPECT_TRUE(rejected(
+      "weibull_tiny",
+      replace(good_model, "tension = 10e6", "tension = { weibull_shape = 1e-3, mean = 10e6 }"),
+      "joints.tension.weibull_shape", 11, "Gamma(1 + 1/m) overflows"));
+}
+
+TEST(BadInput, NonFiniteGravityIsRefused) {
+  EXPECT_TRUE(rejected(
+      "gravity", replace(good_model, "[[stage]]\n", "[solver]\ngravity = [nan, 0]\n[[stage]]\n"),
+      "solver.gravity", 15, "must hold finite numbers only"));
 }
 
 TEST(BadInput, UnwritableOutputFolderIsRejected) {

@@ -261,7 +261,13 @@ TEST(Grains, BadGrainKeysNameFileLineAndKey) {
       {{"[joints.pair.\"quartz-feldspar\"]", "[joints.pair.\"quartz-mica\"]"},
        "key 'joints.pair.quartz-mica': must name two minerals"},
       {{"sub_blocks = \"voronoi\"", "sub_blocks = \"squares\""}, ":11: key 'specimen.sub_blocks'"},
-      {{"[joints.transgranular]", "[joints.transgranularr]"}, "key 'joints.transgranular'"}};
+      {{"[joints.transgranular]", "[joints.transgranularr]"}, "key 'joints.transgranular'"},
+      // A pair's law is read over the intergranular table in place: its values keep their line.
+      {{"tension = 6e6", "tension = -6e6"},
+       ":40: key 'joints.pair.quartz-feldspar.tension': must be >= 0"},
+      {{"grain_size = 2.5e-3", "grain_size = 1e-300"}, ":10: key 'specimen.grain_size': must be "},
+      {{"sub_block_size = 1.2e-3", "sub_block_size = 1e-5"},
+       ":12: key 'specimen.sub_block_size': gives about"}};
   for (std::size_t i = 0; i < cases.size(); ++i) {
     std::string model = text;
     const auto& [from, to] = cases[i].first;

@@ -57,6 +57,19 @@ TEST(ModelFile, MissingBaseFileIsNamedWithItsLine) {
   }
 }
 
+TEST(ModelFile, ErrorInADerivedFileNamesItsOwnLine) {
+  try {
+    io::read_model_file(write("derived_bad.toml", "base = \"" + base_model +
+                                                      "\"\n[[stage]]\nplaten_velocity = 0.01\n"
+                                                      "end_axial_strain = 1e-3\nramp_time = -1\n"));
+    FAIL() << "accepted a negative ramp_time";
+  } catch (const io::ModelFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("derived_bad.toml:5: key 'stage[0].ramp_time'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ModelFile, MarbleModelsShareTheUcsModelsContacts) {
   const std::string dir = std::string(VORODEC_SOURCE_DIR) + "/models/";
   const io::ModelConfig ucs = io::read_model_file(dir + "ucs_marble.toml");

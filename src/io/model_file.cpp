@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "override.hpp"
 #include "toml_section.hpp"
@@ -11,6 +14,40 @@
 namespace vorodec::io {
 
 namespace {
+
+// Limits that keep `vorodec check` and a run's set-up bounded (README.md, model file reference).
+// The counts are estimated from the outline area before anything is tessellated.
+constexpr double kMinLength = 1e-6;      // m, specimen dimensions and block, grain, sub-block sizes
+constexpr double kMaxLength = 1e3;       // m
+constexpr double kMaxBlocks = 1e6;       // blocks of a Voronoi specimen; grains; sub-blocks
+constexpr double kMaxZones = 1e7;        // zones of deformable blocks, 2 x area / zone_size^2
+constexpr double kMaxDamageCells = 1e6;  // area / damage_grid_cell^2
+constexpr long kMaxLloydIterations = 100;
+constexpr long kMaxCycles = 10'000;
+constexpr long kMaxImplicitIncrements = 1'000;
+constexpr long kMaxInt = std::numeric_limits<int>::max();  // keys kept in an int
+// Mean Voronoi edge ~ 0.65 sqrt(area / blocks) (as src/geometry/voronoi_builder.cpp estimates).
+constexpr double kPoissonEdgeFactor = 0.65;
+
+// A length of the specimen (m): within [kMinLength, kMaxLength], so that areas, block counts and
+// the tessellation's tolerances stay in double range.
+double specimen_length(TomlSection& sec, std::string_view key) {
+  const double v = sec.positive(key, laws::required);
+  if (v < kMinLength || v > kMaxLength)
+    sec.fail(key, fmt::format("must be between {:g} m and {:g} m (got {:g} m)", kMinLength,
+                              kMaxLength, v));
+  return v;
+}
+
+// Without throwing: a path the system refuses (too long, no permission) counts as absent.
+bool file_exists(const std::filesystem::path& p) {
+  std::error_code ec;
+  return std::filesystem::exists(p, ec);
+}
+
+std::string mm(double metres) {
+  return fmt::format("{:.4g} mm", metres * 1e3);
+}
 
 bool in_range(const laws::ParamSpec& spec, double v) {
   return (spec.min_inclusive ? v >= spec.min : v > spec.min) && v <= spec.max;
@@ -37,8 +74,13 @@ model::Distribution read_property(TomlSection& sec, const laws::ParamSpec& spec)
     if (!in_range(spec, a))
       d.fail(has_mean ? "mean" : "scale", fmt::format("must be {} (got {})", range_text(spec), a));
     d.finish();
-    return has_mean ? model::Distribution::weibull_from_mean(m, a)
-                    : model::Distribution::weibull_from_scale(m, a);
+    const model::Distribution dist = has_mean ? model::Distribution::weibull_from_mean(m, a)
+                                              : model::Distribution::weibull_from_scale(m, a);
+    // Gamma(1 + 1/m) overflows for m below about 0.006: the mean or the scale would be 0 or inf.
+    if (!std::isfinite(dist.value) || !std::isfinite(dist.weibull_scale) ||
+        (a != 0 && (dist.value == 0 || dist.weibull_scale == 0)))
+      d.fail("weibull_shape", fmt::format("is too small (got {:g}): Gamma(1 + 1/m) overflows", m));
+    return dist;
   }
   const double v = sec.number(spec.key, laws::required);
   if (!in_range(spec, v))
@@ -75,11 +117,11 @@ void read_outline(TomlSection& sec, geometry::Outline& outline) {
   const std::string shape = sec.string("shape", &rect);
   if (shape == "rectangle") {
     outline.kind = geometry::OutlineKind::rectangle;
-    outline.width = sec.positive("width", laws::required);
-    outline.height = sec.positive("height", laws::required);
+    outline.width = specimen_length(sec, "width");
+    outline.height = specimen_length(sec, "height");
   } else if (shape == "disc") {
     outline.kind = geometry::OutlineKind::disc;
-    outline.diameter = sec.positive("diameter", laws::required);
+    outline.diameter = specimen_length(sec, "diameter");
   } else {
     sec.fail("shape", fmt::format("must be \"rectangle\" or \"disc\" (got \"{}\")", shape));
   }
@@ -127,12 +169,12 @@ void read_grain_specimen(TomlSection& sec, TomlSection& top, ModelConfig& cfg) {
   if (sec.has("grain_file")) {
     std::filesystem::path p = sec.string("grain_file", nullptr);
     if (p.is_relative()) p = cfg.file.parent_path() / p;
-    if (!std::filesystem::exists(p))
+    if (!file_exists(p))
       sec.fail("grain_file", fmt::format("grain file '{}' does not exist", p.string()));
     g.grain_file = p;
   } else {
     read_outline(sec, t.outline);
-    g.settings.grain_size = sec.positive("grain_size", laws::required);
+    g.settings.grain_size = specimen_length(sec, "grain_size");
   }
   const std::string voronoi = "voronoi";
   const std::string sub = sec.string("sub_blocks", &voronoi);
@@ -140,12 +182,12 @@ void read_grain_specimen(TomlSection& sec, TomlSection& top, ModelConfig& cfg) {
     g.settings.sub_blocks = geometry::SubBlocks::trigon;
   else if (sub != "voronoi")
     sec.fail("sub_blocks", fmt::format("must be \"voronoi\" or \"trigon\" (got \"{}\")", sub));
-  g.settings.sub_block_size = sec.positive("sub_block_size", laws::required);
+  g.settings.sub_block_size = specimen_length(sec, "sub_block_size");
   if (g.settings.grain_size > 0 && g.settings.sub_block_size > g.settings.grain_size)
     sec.fail("sub_block_size", "must not be larger than grain_size");
   g.settings.sub_block_lloyd_iterations =
-      static_cast<int>(sec.integer("sub_block_lloyd_iterations", 3, 0));
-  t.lloyd_iterations = static_cast<int>(sec.integer("lloyd_iterations", 0, 0));
+      static_cast<int>(sec.integer("sub_block_lloyd_iterations", 3, 0, kMaxLloydIterations));
+  t.lloyd_iterations = static_cast<int>(sec.integer("lloyd_iterations", 0, 0, kMaxLloydIterations));
   t.min_edge_length = sec.non_negative("min_edge_length", 0.0);
   sec.finish();
   g.minerals = read_minerals(top, !g.grain_file);
@@ -172,7 +214,7 @@ void read_specimen(TomlSection sec, TomlSection& top, ModelConfig& cfg) {
   if (sec.has("file")) {
     std::filesystem::path p = sec.string("file", nullptr);
     if (p.is_relative()) p = cfg.file.parent_path() / p;
-    if (!std::filesystem::exists(p))
+    if (!file_exists(p))
       sec.fail("file", fmt::format("specimen file '{}' does not exist", p.string()));
     cfg.specimen_file = p;
     sec.finish();  // a prepared specimen carries its own geometry: no other keys allowed
@@ -182,9 +224,9 @@ void read_specimen(TomlSection sec, TomlSection& top, ModelConfig& cfg) {
   read_outline(sec, t.outline);
   if (sec.has("block_count") == sec.has("mean_edge_length"))
     sec.fail("block_count", "give exactly one of 'block_count' and 'mean_edge_length'");
-  t.block_count = static_cast<int>(sec.integer("block_count", 0, 2));
-  t.mean_edge_length = sec.has("mean_edge_length") ? sec.positive("mean_edge_length", 0) : 0.0;
-  t.lloyd_iterations = static_cast<int>(sec.integer("lloyd_iterations", 0, 0));
+  t.block_count = static_cast<int>(sec.integer("block_count", 0, 2, static_cast<long>(kMaxBlocks)));
+  t.mean_edge_length = sec.has("mean_edge_length") ? specimen_length(sec, "mean_edge_length") : 0.0;
+  t.lloyd_iterations = static_cast<int>(sec.integer("lloyd_iterations", 0, 0, kMaxLloydIterations));
   t.min_edge_length = sec.non_negative("min_edge_length", 0.0);
   sec.finish();
 }
@@ -196,12 +238,11 @@ std::size_t mineral_index(TomlSection& sec, std::string_view key, std::string_vi
   sec.fail(key, fmt::format("unknown mineral '{}'", name));
 }
 
-// A law that starts from `base` and replaces the keys `over` gives.
+// A law that starts from `base` and replaces the keys `over` gives (read in place: a merged copy
+// of the tables would lose every value's file and line).
 LawChoice read_law_over(const toml::table& base, const toml::table& over, const std::string& path,
                         const std::string& file) {
-  toml::table merged = base;
-  for (const auto& [key, node] : over) merged.insert_or_assign(key, node);
-  TomlSection sec(merged, path, file);
+  TomlSection sec(over, path, file, &base);
   LawChoice law = read_law(sec, "mohr_coulomb");
   sec.finish();
   return law;
@@ -265,10 +306,12 @@ loading::CyclicBlock read_cycles(TomlSection& sec, const std::string& name) {
     const double peak = sec.positive("reference_peak", laws::required);
     const double first = sec.positive("first_upper_fraction", laws::required);
     const double step = sec.non_negative("upper_increment_fraction", laws::required);
-    const long n = sec.integer("cycles", 0, 1);
+    const long n = sec.integer("cycles", 0, 1, kMaxCycles);
     if (n < 1) sec.fail("cycles", "required key is missing (number of cycles, >= 1)");
     for (long k = 0; k < n; ++k)
       b.upper_stresses.push_back(peak * (first + step * static_cast<double>(k)));
+    if (!std::isfinite(b.upper_stresses.back()))
+      sec.fail("reference_peak", "the last cycle's upper stress overflows (is not finite)");
   }
   b.lower_stress = sec.non_negative("lower_stress", 0.0);
   for (double u : b.upper_stresses)
@@ -322,7 +365,8 @@ void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, Model
   if (st.implicit_start_fraction > 1)
     sec.fail("implicit_start_fraction",
              fmt::format("must be in (0, 1] (got {})", st.implicit_start_fraction));
-  st.implicit_start_increments = static_cast<int>(sec.integer("implicit_start_increments", 10, 1));
+  st.implicit_start_increments =
+      static_cast<int>(sec.integer("implicit_start_increments", 10, 1, kMaxImplicitIncrements));
   const toml::source_region& at = sec.table().get("implicit_start")->source();
   // A value from --set or a batch case was parsed from text: it has no file or line.
   cfg.implicit_start_where =
@@ -401,14 +445,15 @@ toml::table parse(const std::filesystem::path& file) {
   }
 }
 
-// Tables merge key by key; any other value (arrays such as [[stage]] included) replaces.
-void merge_into(toml::table& base, const toml::table& over) {
-  for (const auto& [key, node] : over) {
+// Tables merge key by key; any other value (arrays such as [[stage]] included) replaces. The
+// nodes of `over` are moved, not copied: a copied toml++ node loses its file and line.
+void merge_into(toml::table& base, toml::table&& over) {
+  for (auto&& [key, node] : over) {
     toml::node* old = base.get(key.str());
     if (old && old->is_table() && node.is_table())
-      merge_into(*old->as_table(), *node.as_table());
+      merge_into(*old->as_table(), std::move(*node.as_table()));
     else
-      base.insert_or_assign(key, node);
+      base.insert_or_assign(key, std::move(node));
   }
 }
 
@@ -424,14 +469,149 @@ toml::table load(const std::filesystem::path& file, int depth,
   if (!name)
     throw ModelFileError(fmt::format("{}:{}: key 'base': must be a string", file.string(), line));
   const std::filesystem::path path = file.parent_path() / *name;
-  if (depth >= 8 || !std::filesystem::exists(path))
+  if (depth >= 8 || !file_exists(path))
     throw ModelFileError(fmt::format(
         "{}:{}: key 'base': {}", file.string(), line,
         depth >= 8 ? "more than 8 nested base files" : "no such file: " + path.string()));
   toml::table merged = load(path, depth + 1, sources);
   t.erase("base");
-  merge_into(merged, t);
+  merge_into(merged, std::move(t));
   return merged;
+}
+
+// A length the specimen's blocks must exceed, and what it is, for messages.
+struct Bound {
+  double length;
+  std::string what;
+};
+
+// The lengths of a specimen against one another, before it is tessellated: the block count
+// (estimated from the outline area) stays bounded, the outline holds its blocks, and blocks are
+// longer than the edges collapsed (min_edge_length) and the corners rounded (rounding_length).
+void check_lengths(const toml::table& root, const ModelConfig& cfg) {
+  if (cfg.specimen_file) return;  // a prepared specimen: its blocks are given
+  const std::string file = cfg.file.string();
+  TomlSection spec(*root.get("specimen")->as_table(), "specimen", file);
+  const geometry::Outline& o = cfg.tessellation.outline;
+  const bool disc = o.kind == geometry::OutlineKind::disc;
+  double width = disc ? o.diameter : o.width, height = disc ? o.diameter : o.height;
+  std::string narrow_key = disc ? "diameter" : o.width <= o.height ? "width" : "height";
+  const GrainConfig* g = cfg.grains ? &*cfg.grains : nullptr;
+  if (g && g->grain_file) {  // the outline is the grains' bounding box
+    geometry::Point lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+    geometry::Point hi{-lo.x, -lo.y};
+    for (const geometry::Grain& grain : g->settings.grains)
+      for (const geometry::Point p : grain.corners) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+      }
+    width = hi.x - lo.x;
+    height = hi.y - lo.y;
+    narrow_key = "grain_file";
+    for (const double v : {width, height})
+      if (!(v >= kMinLength && v <= kMaxLength))
+        spec.fail("grain_file",
+                  fmt::format("the grains span {:g} x {:g} m: each side must be between {:g} m "
+                              "and {:g} m",
+                              width, height, kMinLength, kMaxLength));
+  }
+  const double area = disc && !(g && g->grain_file) ? std::numbers::pi / 4 * o.diameter * o.diameter
+                                                    : width * height;
+  const double smallest = std::min(width, height);
+  const auto circle = [](double diameter) { return std::numbers::pi / 4 * diameter * diameter; };
+
+  // The block size: the side of the mean block's square, sqrt(area / blocks).
+  double block = 0;
+  std::string block_what;
+  if (g) {
+    const double s = g->settings.sub_block_size;
+    if (!g->grain_file) {
+      const double grain = g->settings.grain_size;
+      const double grains = area / circle(grain);
+      if (grains > kMaxBlocks)
+        spec.fail("grain_size", fmt::format("gives about {:.3g} grains (outline area / (pi/4 "
+                                            "grain_size^2)), more than the {:.0f} allowed",
+                                            grains, kMaxBlocks));
+      if (std::round(grains) < 2)
+        spec.fail("grain_size", "is too large: fewer than 2 grains fit in the outline");
+      if (!(kPoissonEdgeFactor * std::sqrt(circle(grain)) < smallest))
+        spec.fail(narrow_key,
+                  fmt::format("({}) must be larger than the grains' mean edge, about "
+                              "0.65 sqrt(pi/4) grain_size = {}",
+                              mm(smallest), mm(kPoissonEdgeFactor * std::sqrt(circle(grain)))));
+    }
+    const double subs = area / circle(s);
+    if (subs > kMaxBlocks)
+      spec.fail("sub_block_size", fmt::format("gives about {:.3g} sub-blocks (outline area / "
+                                              "(pi/4 sub_block_size^2)), more than the {:.0f} "
+                                              "allowed",
+                                              subs, kMaxBlocks));
+    block = std::sqrt(circle(s));
+    block_what = fmt::format("the sub-block size sqrt(pi/4) sub_block_size = {}", mm(block));
+  } else if (cfg.tessellation.block_count > 0) {
+    const double n = cfg.tessellation.block_count;
+    block = std::sqrt(area / n);
+    block_what = fmt::format("the block size sqrt(area / block_count) = {}", mm(block));
+    if (!(kPoissonEdgeFactor * block < smallest))
+      spec.fail(narrow_key, fmt::format("({}) must be larger than the blocks' mean edge, about "
+                                        "0.65 sqrt(area / block_count) = {}",
+                                        mm(smallest), mm(kPoissonEdgeFactor * block)));
+  } else {
+    const double edge = cfg.tessellation.mean_edge_length;
+    const double n = area * std::pow(kPoissonEdgeFactor / edge, 2);
+    if (n > kMaxBlocks)
+      spec.fail("mean_edge_length",
+                fmt::format("gives about {:.3g} blocks (area x (0.65 / mean_edge_length)^2), more "
+                            "than the {:.0f} allowed",
+                            n, kMaxBlocks));
+    if (!(edge < smallest))
+      spec.fail("mean_edge_length",
+                fmt::format("({}) must be smaller than the specimen ({})", mm(edge), mm(smallest)));
+    if (std::round(n) < 2) spec.fail("mean_edge_length", "is too large: fewer than 2 blocks");
+    block = edge / kPoissonEdgeFactor;
+    block_what = fmt::format("the block size mean_edge_length / 0.65 = {}", mm(block));
+  }
+
+  // min_edge_length and 2 x rounding_length must be shorter than every length of the specimen.
+  std::vector<Bound> lengths{
+      {block, block_what},
+      {smallest, fmt::format("the specimen's {} ({})", narrow_key, mm(smallest))}};
+  if (g && !g->grain_file)
+    lengths.push_back(
+        {g->settings.grain_size, fmt::format("grain_size ({})", mm(g->settings.grain_size))});
+  const Bound& shortest =
+      *std::min_element(lengths.begin(), lengths.end(),
+                        [](const Bound& a, const Bound& b) { return a.length < b.length; });
+  const double min_edge = cfg.tessellation.min_edge_length;
+  if (!(min_edge < shortest.length))
+    spec.fail("min_edge_length",
+              fmt::format("({}) must be shorter than {}", mm(min_edge), shortest.what));
+  if (cfg.rounding_length > 0 || cfg.solver.contact_tolerance > 0) {
+    TomlSection contact(*root.get("contact")->as_table(), "contact", file);
+    if (!(2 * cfg.rounding_length < shortest.length))
+      contact.fail("rounding_length", fmt::format("({}) must be shorter than half of {}",
+                                                  mm(cfg.rounding_length), shortest.what));
+    if (!(cfg.solver.contact_tolerance < block))
+      contact.fail("tolerance", fmt::format("({}) must be shorter than {}",
+                                            mm(cfg.solver.contact_tolerance), block_what));
+  }
+  if (cfg.deformable.enabled) {
+    const double zones = 2 * area / std::pow(cfg.deformable.zone_size, 2);
+    if (zones > kMaxZones)
+      TomlSection(*root.get("blocks")->as_table(), "blocks", file)
+          .fail("zone_size", fmt::format("gives about {:.3g} zones (2 x area / zone_size^2), more "
+                                         "than the {:.0f} allowed",
+                                         zones, kMaxZones));
+  }
+  if (cfg.output.damage_grid_cell > 0) {
+    const double cells = area / std::pow(cfg.output.damage_grid_cell, 2);
+    if (cells > kMaxDamageCells)
+      TomlSection(*root.get("output")->as_table(), "output", file)
+          .fail("damage_grid_cell",
+                fmt::format("gives about {:.3g} cells (area / damage_grid_cell^2), more than the "
+                            "{:.0f} allowed",
+                            cells, kMaxDamageCells));
+  }
 }
 
 void read_root(const toml::table& root, ModelConfig& cfg) {
@@ -534,12 +714,14 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     }
     cfg.max_steps = s.integer("max_steps", 20'000'000, 1);
     cfg.solver.max_detection_interval =
-        static_cast<int>(s.integer("max_detection_interval", 200, 1));
+        static_cast<int>(s.integer("max_detection_interval", 200, 1, kMaxInt));
     if (const toml::node* g = s.node("gravity")) {
       const toml::array* a = g->as_array();
       if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
         s.fail_at(g, "gravity", "must be an array of two numbers [gx, gy] in m/s^2");
       cfg.solver.gravity = {(*a)[0].value<double>().value(), (*a)[1].value<double>().value()};
+      if (!std::isfinite(cfg.solver.gravity.x) || !std::isfinite(cfg.solver.gravity.y))
+        s.fail_at(g, "gravity", "must hold finite numbers only");
     }
     s.finish();
   } else {
@@ -570,6 +752,7 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     o.finish();
   }
   top.finish();
+  check_lengths(root, cfg);
 }
 
 }  // namespace

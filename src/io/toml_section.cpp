@@ -25,15 +25,21 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }
 }  // namespace
 
-TomlSection::TomlSection(const toml::table& table, std::string path, std::string file)
-    : table_(table), path_(std::move(path)), file_(std::move(file)) {}
+TomlSection::TomlSection(const toml::table& table, std::string path, std::string file,
+                         const toml::table* inherited)
+    : table_(table), inherited_(inherited), path_(std::move(path)), file_(std::move(file)) {}
+
+const toml::node* TomlSection::find(std::string_view key) const {
+  const toml::node* n = table_.get(key);
+  return n || !inherited_ ? n : inherited_->get(key);
+}
 
 std::string TomlSection::key_path(std::string_view key) const {
   return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
 }
 
 void TomlSection::fail(std::string_view key, const std::string& message) const {
-  fail_at(table_.get(key), key, message);
+  fail_at(find(key), key, message);
 }
 
 void TomlSection::fail_at(const toml::node* where, std::string_view key,
@@ -48,7 +54,7 @@ void TomlSection::fail_at(const toml::node* where, std::string_view key,
 
 const toml::node* TomlSection::node(std::string_view key) {
   used_.insert(std::string(key));
-  return table_.get(key);
+  return find(key);
 }
 
 double TomlSection::number(std::string_view key, double fallback) {
@@ -75,12 +81,13 @@ double TomlSection::non_negative(std::string_view key, double fallback) {
   return v;
 }
 
-long TomlSection::integer(std::string_view key, long fallback, long min) {
+long TomlSection::integer(std::string_view key, long fallback, long min, long max) {
   const toml::node* n = node(key);
   if (!n) return fallback;
   const auto v = n->value_exact<std::int64_t>();
   if (!v) fail(key, "must be an integer");
   if (*v < min) fail(key, fmt::format("must be >= {} (got {})", min, *v));
+  if (*v > max) fail(key, fmt::format("must be <= {} (got {})", max, *v));
   return static_cast<long>(*v);
 }
 
@@ -126,22 +133,25 @@ TomlSection TomlSection::sub(std::string_view key) {
 }
 
 void TomlSection::finish() const {
-  for (const auto& [k, v] : table_) {
-    if (used_.count(k.str())) continue;
-    std::string hint;
-    std::size_t best = 3;
-    for (const auto& u : used_) {
-      const std::size_t d = edit_distance(k.str(), u);
-      if (d < best) {
-        best = d;
-        hint = fmt::format(" (did you mean '{}'?)", u);
+  for (const toml::table* t : {&table_, inherited_}) {
+    if (!t) continue;
+    for (const auto& [k, v] : *t) {
+      if (used_.count(k.str())) continue;
+      std::string hint;
+      std::size_t best = 3;
+      for (const auto& u : used_) {
+        const std::size_t d = edit_distance(k.str(), u);
+        if (d < best) {
+          best = d;
+          hint = fmt::format(" (did you mean '{}'?)", u);
+        }
       }
+      const std::string reason = "unknown key" + hint;
+      const std::string& file = k.source().path ? *k.source().path : file_;
+      throw ModelFileError(fmt::format("{}:{}: key '{}': {}", file, k.source().begin.line,
+                                       key_path(k.str()), reason),
+                           key_path(k.str()), reason);
     }
-    const std::string reason = "unknown key" + hint;
-    const std::string& file = k.source().path ? *k.source().path : file_;
-    throw ModelFileError(
-        fmt::format("{}:{}: key '{}': {}", file, k.source().begin.line, key_path(k.str()), reason),
-        key_path(k.str()), reason);
   }
 }
 

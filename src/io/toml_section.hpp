@@ -3,6 +3,7 @@
 // (a misspelled key) is reported with its line. Every error names file, key and line.
 #include <toml++/toml.h>
 
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -13,13 +14,18 @@ namespace vorodec::io {
 
 class TomlSection {
  public:
-  TomlSection(const toml::table& table, std::string path, std::string file);
+  // Keys absent from `table` are looked up in `inherited` (if given), read in place so that its
+  // values keep their file and line; finish() reports unknown keys of either.
+  TomlSection(const toml::table& table, std::string path, std::string file,
+              const toml::table* inherited = nullptr);
 
-  bool has(std::string_view key) const { return table_.contains(key); }
+  bool has(std::string_view key) const { return find(key) != nullptr; }
   double number(std::string_view key, double fallback);  // fallback NaN: required
   double positive(std::string_view key, double fallback);
   double non_negative(std::string_view key, double fallback);
-  long integer(std::string_view key, long fallback, long min);
+  // An integer in [min, max]; keys stored in an int pass max <= INT_MAX.
+  long integer(std::string_view key, long fallback, long min,
+               long max = std::numeric_limits<long>::max());
   std::string string(std::string_view key, const std::string* fallback);
   bool boolean(std::string_view key, bool fallback);
   std::vector<double> numbers(std::string_view key);  // a required non-empty array of numbers
@@ -33,12 +39,14 @@ class TomlSection {
   [[noreturn]] void fail_at(const toml::node* where, std::string_view key,
                             const std::string& message) const;
   std::string key_path(std::string_view key) const;
+  const toml::node* find(std::string_view key) const;  // does not mark the key used
   const toml::table& table() const { return table_; }
   const std::string& file() const { return file_; }
   int line() const { return static_cast<int>(table_.source().begin.line); }
 
  private:
   const toml::table& table_;
+  const toml::table* inherited_;
   std::string path_, file_;
   std::set<std::string, std::less<>> used_;
 };
