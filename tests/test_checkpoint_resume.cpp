@@ -324,3 +324,43 @@ TEST(CheckpointState, LoadedAndSavedAgainIsTheSameBytesForZonedGrains) {
                            " --set 'mineral[0].E=60e9' --set 'mineral[0].nu=0.25'"
                            " --set 'mineral[1].E=90e9' --set 'mineral[1].nu=0.1'");
 }
+
+TEST(SignalledRun, StopsWithACheckpointOnSigtermAndResumesToTheUninterruptedResult) {
+  const fs::path straight = out_dir("term_straight"), stopped = out_dir("term_stopped");
+  ASSERT_EQ(run_vorodec("run " + marble_args(straight)), 0);
+  const pid_t pid = start_vorodec("run " + marble_args(stopped));
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  // Signalled once it steps (its history has rows).
+  while (lines_of(stopped / "history.csv").size() < 3 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), kStopped) << "the run ended before the signal";
+  EXPECT_FALSE(fs::exists(stopped / "summary.json"));
+  EXPECT_EQ(run_vorodec("resume " + stopped.string() + " --threads 2"), 0);
+  expect_same_files(straight, stopped);
+}
+
+TEST(Progress, StagePercentagesNeverGoBack) {
+  const Outcome o = run_capture("run " + kModels + "cyclic_small.toml --threads 1 --no-vtk --out " +
+                                out_dir("progress").string());
+  ASSERT_EQ(o.code, 0) << o.output;
+  std::istringstream lines(o.output);
+  std::string stage;
+  double last = -1;
+  int shown = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const auto at = line.find("% of the stage");
+    if (line.rfind("progress: stage ", 0) != 0 || at == std::string::npos) continue;
+    const std::string this_stage = line.substr(16, line.find("  step") - 16);
+    const double percent = std::stod(line.substr(line.rfind(' ', at - 1) + 1));
+    if (this_stage != stage) last = -1;
+    EXPECT_GE(percent, last) << line;
+    stage = this_stage;
+    last = percent;
+    ++shown;
+  }
+  EXPECT_GT(shown, 3) << o.output;
+}

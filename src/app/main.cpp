@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
     try {
       specimen = app::make_specimen(cfg);
     } catch (const geometry::GeometryError& e) {
-      fmt::print(stderr, "{}:{}: [specimen]: impossible geometry: {}\n", model_path,
+      fmt::print(stderr, "error: {}:{}: [specimen]: impossible geometry: {}\n", model_path,
                  cfg.specimen_line, e.what());
       return bad_input;
     }
