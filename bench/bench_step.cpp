@@ -7,10 +7,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <sstream>
 
 #include "vorodec/app/simulation.hpp"
-#include "vorodec/checkpoint/archive_io.hpp"
 #include "vorodec/checkpoint/checkpoint_file.hpp"
 #include "vorodec/loading/boundary.hpp"
 
@@ -117,17 +115,11 @@ void BM_CheckpointWrite(benchmark::State& state) {
   for (int i = 0; i < 300; ++i) pm.solver->step();
   const auto file = std::filesystem::temp_directory_path() / "vorodec_bench_checkpoint.vck";
   std::size_t bytes = 0;
-  for (auto _ : state) {
-    std::ostringstream out;
-    {
-      checkpoint::OutArchive ar(out);
+  for (auto _ : state)
+    bytes = checkpoint::write_checkpoint(file, {}, [&](checkpoint::OutArchive& ar) {
       model::save_state(ar, *pm.model);
       pm.solver->save(ar);
-    }
-    checkpoint::Contents c{{}, out.str()};
-    bytes = c.state.size();
-    checkpoint::write_checkpoint(file, c);
-  }
+    });
   std::filesystem::remove(file);
   state.counters["MB"] = static_cast<double>(bytes) / 1e6;
   state.counters["bytes/block"] =

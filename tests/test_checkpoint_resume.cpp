@@ -255,9 +255,9 @@ TEST(ResumeRefuses, ARunWhoseModelFileChanged) {
 TEST(ResumeRefuses, ACheckpointOfAnotherVorodecVersion) {
   const fs::path out = out_dir("other_version");
   fs::create_directories(out);
-  vorodec::checkpoint::Contents c;
-  c.header.vorodec_version = "0.0.1-elsewhere";
-  vorodec::checkpoint::write_checkpoint(out / "checkpoint.vck", c);
+  vorodec::checkpoint::Header h;
+  h.vorodec_version = "0.0.1-elsewhere";
+  vorodec::checkpoint::write_checkpoint(out / "checkpoint.vck", h, [](auto&) {});
   expect_refused(out, "written by vorodec 0.0.1-elsewhere");
 }
 

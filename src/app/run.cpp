@@ -77,21 +77,17 @@ struct Run {
   void write_checkpoint() {
     const auto start = Clock::now();
     observers.flush();
-    std::ostringstream state;
-    {
-      checkpoint::OutArchive ar(state);
-      model::save_state(ar, *prepared.model);
-      prepared.solver->save(ar);
-      driver.save(ar);
-      observers.save(ar);
-    }
     header.step = prepared.solver->steps();
     header.time = prepared.solver->time();
     header.wall_seconds = wall_seconds();
-    const checkpoint::Contents contents{header, state.str()};
-    checkpoint::write_checkpoint(options.out / kCheckpointFile, contents);
+    checkpoint_bytes = checkpoint::write_checkpoint(options.out / kCheckpointFile, header,
+                                                    [&](checkpoint::OutArchive& ar) {
+                                                      model::save_state(ar, *prepared.model);
+                                                      prepared.solver->save(ar);
+                                                      driver.save(ar);
+                                                      observers.save(ar);
+                                                    });
     ++checkpoints;
-    checkpoint_bytes = contents.state.size();
     checkpoint_seconds += std::chrono::duration<double>(Clock::now() - start).count();
     last_checkpoint = Clock::now();
     checkpoint_step = prepared.solver->steps();

@@ -29,20 +29,27 @@ std::uint32_t crc32_of(std::string_view data, std::uint32_t crc = 0) {
 
 }  // namespace
 
-void write_checkpoint(const std::filesystem::path& file, const Contents& contents) {
-  std::ostringstream body;
+std::size_t write_checkpoint(const std::filesystem::path& file, const Header& header,
+                             const std::function<void(OutArchive&)>& state) {
+  std::ostringstream out;
+  std::size_t header_bytes = 0;
   {
-    OutArchive ar(body);
-    ar(contents.header, contents.state);
+    OutArchive ar(out);
+    ar(header);
+    header_bytes = static_cast<std::size_t>(out.tellp());
+    state(ar);
   }
-  const std::string b = body.str();
-  std::ostringstream whole;
+  const std::string body = std::move(out).str();
+  std::ostringstream frame;
   {
-    OutArchive ar(whole);
-    ar(cereal::binary_data(kMagic, sizeof kMagic), kFormat, std::uint64_t{b.size()}, crc32_of(b));
+    OutArchive ar(frame);
+    ar(cereal::binary_data(kMagic, sizeof kMagic), kFormat, std::uint64_t{body.size()},
+       crc32_of(body));
   }
-  whole << b;
-  io::write_file_atomically(file, whole.str());
+  const std::string f = frame.str();
+  const std::string_view parts[] = {f, body};
+  io::write_file_atomically(file, parts);
+  return body.size() - header_bytes;
 }
 
 Contents read_checkpoint(const std::filesystem::path& file) {
@@ -75,8 +82,11 @@ Contents read_checkpoint(const std::filesystem::path& file) {
     throw CheckpointError(fmt::format("{}: corrupt (its checksum does not match)", name));
   Contents c;
   std::istringstream stream{std::string(body)};
-  InArchive ar(stream);
-  ar(c.header, c.state);
+  {
+    InArchive ar(stream);
+    ar(c.header);
+  }
+  c.state = body.substr(static_cast<std::size_t>(stream.tellg()));
   if (c.header.vorodec_version != VORODEC_VERSION)
     throw CheckpointError(
         fmt::format("{}: written by vorodec {}, this is vorodec {}: start the run again", name,

@@ -33,11 +33,16 @@ void write_all(int fd, std::string_view data, const std::filesystem::path& file)
 }
 
 void write_file_atomically(const std::filesystem::path& file, std::string_view content) {
+  write_file_atomically(file, std::span<const std::string_view>(&content, 1));
+}
+
+void write_file_atomically(const std::filesystem::path& file,
+                           std::span<const std::string_view> parts) {
   std::filesystem::path tmp = file;
   tmp += ".tmp";
   const int fd = open_for_writing(tmp, O_WRONLY | O_CREAT | O_TRUNC);
   try {
-    write_all(fd, content, tmp);
+    for (const std::string_view part : parts) write_all(fd, part, tmp);
   } catch (...) {
     ::close(fd);
     throw;

@@ -1,13 +1,17 @@
 #pragma once
 // A checkpoint file: a magic string, the format version, the body's size and CRC-32, then the
-// body (cereal binary): the header below and the run's state. A file from another vorodec
-// version, for another model file, truncated or corrupt is refused, and the error says which.
+// body: the header below (cereal binary), then the run's state (cereal binary archive). A file from
+// another vorodec version, for another model file, truncated or corrupt is refused, and the error
+// says which.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "vorodec/checkpoint/archive.hpp"
 
 namespace vorodec::checkpoint {
 
@@ -37,11 +41,14 @@ class CheckpointError : public std::runtime_error {
 
 struct Contents {
   Header header;
-  std::string state;  // cereal binary archive of the run's state
+  std::string state;  // the run's state: read it with an InArchive
 };
 
 // Through a temporary name, synced, renamed over the last one: a kill keeps one whole checkpoint.
-void write_checkpoint(const std::filesystem::path& file, const Contents& contents);
+// `state` writes the run's state into the archive after the header (no copy of it is made).
+// Returns the bytes of the state.
+std::size_t write_checkpoint(const std::filesystem::path& file, const Header& header,
+                             const std::function<void(OutArchive&)>& state);
 // Throws CheckpointError: no such file, not a checkpoint, another format or vorodec version,
 // truncated, corrupt.
 Contents read_checkpoint(const std::filesystem::path& file);
