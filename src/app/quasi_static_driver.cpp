@@ -11,6 +11,13 @@
 
 namespace vorodec::app {
 
+// A member added to the driver is either state a checkpoint carries (save and load it in
+// QuasiStaticDriver::state) or comes again from the model file or the loaded state (say so there);
+// then update these sizes.
+static_assert(sizeof(QuasiStaticDriver) == 584, "QuasiStaticDriver changed: see state()");
+static_assert(sizeof(DriverOutcome) == 216, "DriverOutcome changed: see state()");
+static_assert(sizeof(loading::StageControl) == 104, "StageControl changed: see its serialize()");
+
 QuasiStaticDriver::QuasiStaticDriver(const io::ModelConfig& cfg, model::Model& model,
                                      solver::Solver& solver,
                                      const loading::SpecimenBoundary& boundary,

@@ -5,6 +5,14 @@
 
 namespace vorodec::model {
 
+// A member added to the model is either state a checkpoint carries (save and load it in state()
+// below) or comes again from the model file or the loaded state (say so there); then update these
+// sizes.
+static_assert(sizeof(Blocks) == 624, "Blocks changed: see state()");
+static_assert(sizeof(Zoning) == 600, "Zoning changed: see state()");
+static_assert(sizeof(Model) == 1264, "Model changed: see state()");
+static_assert(sizeof(Contact) == 64, "Contact changed: see state()");
+
 namespace {
 
 // One list for both directions, so a saved field is a loaded field.

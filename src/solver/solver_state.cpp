@@ -4,6 +4,10 @@
 
 namespace vorodec::solver {
 
+// A member added to Solver is either state a checkpoint carries (save and load it in Solver::state)
+// or comes again from the model file or the loaded state (say so there); then update these sizes.
+static_assert(sizeof(Solver) == 736, "Solver changed: see Solver::state");
+
 template <class Archive>
 void Solver::state(Archive& ar) {
   using checkpoint::bytes;
