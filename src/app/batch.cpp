@@ -80,8 +80,17 @@ std::string joined(const std::vector<std::string>& args) {
   return s;
 }
 
-// In a case's folder: the command it was started with, and once it ended for good (any exit but
-// a stop for resume or a signal), its exit code and wall time.
+// What a case is: its command line and what its model files hold (an edited model is another case).
+std::string case_identity(const io::BatchCase& c, const std::vector<std::string>& command) {
+  std::vector<std::string> overrides;
+  for (const io::Override& o : c.overrides) overrides.insert(overrides.end(), {o.key, o.value});
+  const io::ModelConfig cfg = io::read_model_file(c.model, c.overrides);
+  return joined(command) +
+         fmt::format("model files crc32 {:08x}\n", checkpoint::model_hash(cfg.sources, overrides));
+}
+
+// In a case's folder: its identity (case_identity) when it was started, and once it ended for good
+// (any exit but a stop for resume or a signal), its exit code and wall time.
 constexpr const char* kCaseCommand = "case_command.txt";
 constexpr const char* kCaseOutcome = "case_outcome.txt";
 
@@ -158,19 +167,20 @@ std::map<std::size_t, Outcome> run_cases(const io::BatchPlan& plan,
       const fs::path dir = out / c.name;
       fs::create_directories(dir);
       const std::vector<std::string> command = case_command(c, dir, options);
+      const std::string identity = case_identity(c, command);
       // A batch run again on its folder continues: finished cases are kept as they are,
       // stopped ones resume from their checkpoints, the others run.
-      if (const std::optional<Outcome> o = finished_before(dir, joined(command))) {
+      if (const std::optional<Outcome> o = finished_before(dir, identity)) {
         done[i] = *o;
         fmt::print("{}case {}/{} {}: kept, it finished before (exit {})\n", who, i + 1,
                    plan.cases.size(), c.name, o->exit_code);
         continue;
       }
       const bool resume =
-          fs::exists(dir / kCheckpointFile) && read_text(dir / kCaseCommand) == joined(command);
+          fs::exists(dir / kCheckpointFile) && read_text(dir / kCaseCommand) == identity;
       fs::remove(dir / kCaseOutcome);
       if (!resume) fs::remove(dir / "summary.json");  // never report a previous batch's result
-      io::write_file_atomically(dir / kCaseCommand, joined(command));
+      io::write_file_atomically(dir / kCaseCommand, identity);
       const std::vector<std::string> args =
           resume ? std::vector<std::string>{"vorodec", "resume", dir.string(), "--threads", "1"}
                  : command;

@@ -157,7 +157,6 @@ int main(int argc, char** argv) {
     return app::run_batch(batch_options);
   }
   if (threads > 0) omp_set_num_threads(threads);
-  if (run->parsed() || resume->parsed()) app::stop_on_signals();
   try {
     if (resume->parsed()) {
       const app::RunSummary s = app::resume_run(resume_dir, stop_at_step, true);

@@ -115,6 +115,8 @@ struct Run {
   }
 
   RunSummary execute() {
+    // From here a signal stops the run at its next step with a checkpoint; before, it ends it.
+    stop_on_signals();
     while (!driver.finished()) {
       if (driver.resumable()) {
         const auto [write, stop] = checkpoint_due();
@@ -156,6 +158,7 @@ struct Run {
 void stop_on_signals() {
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;
+  sa.sa_flags = SA_RESETHAND;  // a second signal ends the run at once
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
@@ -205,12 +208,17 @@ RunSummary resume_run(const fs::path& dir, long stop_at_step, bool progress) {
     std::error_code ec;
     fs::remove(dir / end, ec);
   }
-  std::istringstream state(contents.state);
-  checkpoint::InArchive ar(state);
-  model::load_state(ar, *run.prepared.model);
-  run.prepared.solver->load(ar);
-  run.driver.load(ar);
-  run.observers = make_observers(run.driver.view(), run.damage, dir, h.write_vtk, run.curve, &ar);
+  try {
+    std::istringstream state(contents.state);
+    checkpoint::InArchive ar(state);
+    model::load_state(ar, *run.prepared.model);
+    run.prepared.solver->load(ar);
+    run.driver.load(ar);
+    run.observers = make_observers(run.driver.view(), run.damage, dir, h.write_vtk, run.curve, &ar);
+  } catch (const std::exception& e) {  // a state that does not fit the model, or spoilt outputs
+    throw checkpoint::CheckpointError(
+        fmt::format("{}: cannot continue from it: {}", (dir / kCheckpointFile).string(), e.what()));
+  }
   run.checkpoint_step = run.prepared.solver->steps();
   return run.execute();
 }

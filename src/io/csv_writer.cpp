@@ -35,14 +35,22 @@ std::string CsvWriter::format_row(std::span<const double> values, const std::str
   return line + '\n';
 }
 
+// The header goes in whole with the file (a kill leaves the old file or one with its header).
 CsvWriter::CsvWriter(const std::filesystem::path& file, std::span<const std::string> header)
-    : file_(file), fd_(open_for_writing(file, O_WRONLY | O_CREAT | O_TRUNC)) {
-  buffer_ = format_header(header);
-  flush();
+    : file_(file) {
+  const std::string h = format_header(header);
+  write_file_atomically(file, h);
+  fd_ = open_for_writing(file, O_WRONLY | O_APPEND);
+  written_ = h.size();
 }
 
-CsvWriter::CsvWriter(const std::filesystem::path& file, std::uint64_t bytes)
-    : file_(file), fd_(open_for_writing(file, O_WRONLY)) {
+CsvWriter::CsvWriter(const std::filesystem::path& file, std::uint64_t bytes) : file_(file) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (ec || size < bytes)
+    throw std::runtime_error(fmt::format("'{}' is {} than it was at the checkpoint", file.string(),
+                                         ec ? "missing" : "shorter"));
+  fd_ = open_for_writing(file, O_WRONLY);
   if (::ftruncate(fd_, static_cast<off_t>(bytes)) != 0 ||
       ::lseek(fd_, static_cast<off_t>(bytes), SEEK_SET) < 0) {
     ::close(fd_);

@@ -24,6 +24,8 @@ void state(Archive& ar, M& m) {
      pod(b.inertia), pod(b.fx), pod(b.fy), pod(b.moment), pod(b.prescribed));
   // The world arrays are those of the last step's start, which outputs read: saved, not redone.
   ar(pod(b.cos_t), pod(b.sin_t), pod(b.world), pod(b.kin));
+  // Deformable blocks' corner arcs and edge constants follow their gridpoints.
+  ar(pod(b.shape));
   ar(pod(m.contacts));
   auto& z = m.zoning;
   ar(pod(z.x), pod(z.y), pod(z.vx), pod(z.vy), pod(z.mass), pod(z.fx), pod(z.fy), pod(z.cfx),

@@ -88,7 +88,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
 // checkpoint) and io::ModelFileError (the model file changed since).
 RunSummary resume_run(const std::filesystem::path& dir, long stop_at_step, bool progress);
 
-// SIGINT and SIGTERM then stop a run at its next step with a checkpoint (kStoppedForResume).
+// SIGINT and SIGTERM then stop a run at its next step with a checkpoint (kStoppedForResume); a
+// second one ends it at once. Runs install this when their stepping starts.
 void stop_on_signals();
 
 // The initial contacts of a model with their sampled properties, as text (for `vorodec build`).
