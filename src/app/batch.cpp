@@ -220,12 +220,7 @@ std::string header(const io::BatchPlan& plan) {
 
 std::string row(const io::BatchPlan& plan, std::size_t i, const Outcome& o, const fs::path& out) {
   const io::BatchCase& c = plan.cases[i];
-  std::string summary;
-  if (std::ifstream in(out / c.name / "summary.json"); in) {
-    std::ostringstream s;
-    s << in.rdbuf();
-    summary = s.str();
-  }
+  const std::string summary = read_text(out / c.name / "summary.json");
   const std::string status = summary.empty() ? fmt::format("no summary, see {}/log.txt", c.name)
                                              : json_field(summary, "status");
   // Appends only: GCC 12 warns (-Wrestrict, falsely) about "," + std::string here.
