@@ -46,6 +46,16 @@ TEST(Verification, A7WeibullMeanIsA0) {
 TEST(Verification, A8LocalDampingRemovesAnalyticEnergyFraction) {
   EXPECT_TRUE(passes(a8_local_damping()));
 }
+TEST(Verification, A10BurgersContactFollowsTheAnalyticCreepCurveNormalAndShear) {
+  EXPECT_TRUE(passes(a10_burgers_creep(false)));
+  EXPECT_TRUE(passes(a10_burgers_creep(true)));
+}
+TEST(Verification, A10BurgersCreepIsSecondOrderFromTheConsistentStartFirstOrderFromZero) {
+  const std::vector<Ladder> ladders = a10_ladders();
+  ASSERT_EQ(ladders.size(), 2u);
+  EXPECT_NEAR(ladders[0].order(), 2.0, 0.2);
+  EXPECT_NEAR(ladders[1].order(), 1.0, 0.2);
+}
 
 TEST(Verification, G1MineralAreaFractionsMatchTheRequestWithinOneGrain) {
   for (const auto& r : g1_mineral_fractions(0.01, 1.52e-3)) EXPECT_TRUE(passes(r));

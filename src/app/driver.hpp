@@ -21,6 +21,7 @@ struct RunView {
   const measure::SpecimenState& state;
   double platen_velocity;  // m/s, top platen, compression +
   int stage;               // index of the current stage
+  bool creep_stages;       // the load path has creep stages (time is also told in days)
 };
 
 // When to sample: a history row, an output frame (VTK and rose.csv), under this label.
@@ -42,6 +43,7 @@ struct ProgressReport {
   // stress); NaN where it is not (a post-peak end), and then `waiting` says what is awaited.
   double fraction = std::nan("");
   std::string waiting;
+  std::string clock;  // creep stages: simulated time in days
 };
 
 // How the load path ended, for the summary.
@@ -51,6 +53,8 @@ struct DriverOutcome {
   double peak = 0, trough = 0;  // Pa, largest and smallest axial stress
   std::vector<bool> stalled;    // per stage: it ended because it could not reach its target
   std::optional<ImplicitStart> implicit_start;
+  // Creep stages: (stage index, what it did), in stage order.
+  std::vector<std::pair<std::size_t, CreepStageReport>> creep;
 };
 
 class Driver {

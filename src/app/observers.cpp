@@ -27,6 +27,8 @@ class HistoryObserver final : public Observer {
       : damage_(damage),
         zoned_(!v.model.zoning.empty()),
         grains_(!v.specimen.block_grain.empty()),
+        viscous_(v.solver.viscous()),
+        creep_(v.creep_stages),
         curve_(curve) {
     csv_ = open_csv(out / "history.csv", header(), resume);
     if (resume)
@@ -64,6 +66,9 @@ class HistoryObserver final : public Observer {
                                "damping_energy",
                                "friction_energy",
                                "breakage_energy"};
+    // Viscous contacts (Burger's): their dashpots' work, J/m; creep runs: time in days.
+    if (viscous_) h.emplace_back("viscous_energy");
+    if (creep_) h.emplace_back("time_days");
     // Deformable specimens: the zones' area-weighted mean stress (compression positive, Pa).
     if (zoned_) h.insert(h.end(), {"zone_stress_xx", "zone_stress_yy", "zone_stress_xy"});
     if (grains_) {
@@ -105,6 +110,8 @@ class HistoryObserver final : public Observer {
         e.slip,
         e.breakage};
     std::vector<double> full(std::begin(row), std::end(row));
+    if (viscous_) full.push_back(e.viscous);
+    if (creep_) full.push_back(solver.time() / 86400.0);
     if (zoned_) {
       const model::ZoneStress m = model::mean_stress(v.model, Group::specimen);
       full.insert(full.end(), {-m.xx, -m.yy, -m.xy});
@@ -125,7 +132,7 @@ class HistoryObserver final : public Observer {
   }
 
   const DamageOutput& damage_;
-  bool zoned_, grains_;
+  bool zoned_, grains_, viscous_, creep_;
   Curve& curve_;
   std::unique_ptr<io::CsvWriter> csv_;
 };

@@ -36,6 +36,7 @@ void Progress::show(const ProgressReport& r) {
   } else {
     what = r.waiting;
   }
+  if (!r.clock.empty()) what = r.clock + "  " + what;
   const std::string line =
       fmt::format("stage {}/{} {}  step {}  stress {:.2f} MPa  {}", r.stage + 1, r.stages,
                   r.stage_name, r.steps, r.stress / 1e6, what);

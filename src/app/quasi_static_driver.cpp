@@ -14,8 +14,8 @@ namespace vorodec::app {
 // A member added to the driver is either state a checkpoint carries (save and load it in
 // QuasiStaticDriver::state) or comes again from the model file or the loaded state (say so there);
 // then update these sizes.
-static_assert(sizeof(QuasiStaticDriver) == 584, "QuasiStaticDriver changed: see state()");
-static_assert(sizeof(DriverOutcome) == 216, "DriverOutcome changed: see state()");
+static_assert(sizeof(QuasiStaticDriver) == 776, "QuasiStaticDriver changed: see state()");
+static_assert(sizeof(DriverOutcome) == 240, "DriverOutcome changed: see state()");
 static_assert(sizeof(loading::StageControl) == 104, "StageControl changed: see its serialize()");
 
 QuasiStaticDriver::QuasiStaticDriver(const io::ModelConfig& cfg, model::Model& model,
@@ -36,7 +36,10 @@ QuasiStaticDriver::QuasiStaticDriver(const io::ModelConfig& cfg, model::Model& m
 }
 
 RunView QuasiStaticDriver::view() const {
-  return {model_, solver_, specimen_, state_, v_, static_cast<int>(si_)};
+  const auto& stages = cfg_.load_path.stages;
+  const bool creep = std::any_of(stages.begin(), stages.end(),
+                                 [](const loading::Stage& s) { return s.creep.enabled; });
+  return {model_, solver_, specimen_, state_, v_, static_cast<int>(si_), creep};
 }
 
 void QuasiStaticDriver::advance(Observers& observers) {
@@ -68,6 +71,11 @@ void QuasiStaticDriver::start_stage(Observers& observers) {
   t0_ = solver_.time();
   stage_fraction_ = 0;
   control_.emplace(st, v_, state_.axial_stress, state_.axial_strain);
+  creep_.reset();
+  if (st.creep.enabled)
+    creep_.emplace(st, solver_);
+  else if (solver_.scaling_time_step() != cfg_.solver.time_step)  // after a creep stage
+    solver_.rescale_time_step(cfg_.solver.time_step);
   observers.sample(view(), {st.name + ":start", true, false});
   if (st.implicit_start) {
     try {
@@ -119,6 +127,13 @@ void QuasiStaticDriver::step(Observers& observers) {
   const loading::StageOutcome outcome =
       control.judge({solver_.time() - t0_, state_.axial_stress, state_.axial_strain, row});
   stage_fraction_ = std::max(stage_fraction_, control.fraction());
+  if (creep_ && creep_->after_step(solver_, state_, solver_.time() - t0_)) {
+    outcome_.status = fmt::format("creep failure in stage '{}' after {:.4g} days", st.name,
+                                  (solver_.time() - t0_) / 86400.0);
+    stop_ = true;
+    phase_ = Phase::stage_end;
+    return;
+  }
   if (outcome == loading::StageOutcome::stalled) {
     outcome_.stalled[si_] = true;
     resume_at_ = st.block_end;
@@ -129,6 +144,7 @@ void QuasiStaticDriver::step(Observers& observers) {
 void QuasiStaticDriver::end_stage(Observers& observers) {
   const loading::Stage& st = stage();
   const std::string label = st.name + (outcome_.stalled[si_] ? ":stalled" : ":end");
+  if (creep_) outcome_.creep.emplace_back(si_, creep_->report());
   observers.sample(view(), {label, true, true});
   std::size_t next = si_ + 1;
   if (resume_at_ >= 0 && st.phase == loading::CyclePhase::unloading) {
@@ -170,6 +186,9 @@ ProgressReport QuasiStaticDriver::progress() const {
   if (phase_ == Phase::done || si_ >= r.stages) return r;
   const loading::Stage& st = stage();
   r.stage_name = st.name;
+  if (st.creep.enabled)
+    r.clock = fmt::format("day {:.3f} of {:.3f}", (solver_.time() - t0_) / 86400.0,
+                          st.end.duration / 86400.0);
   if (std::isnan(st.end.post_peak_fraction)) {
     r.fraction = stage_fraction_;
     return r;
@@ -199,6 +218,23 @@ void QuasiStaticDriver::state(Archive& ar) {
     if (control) control_.emplace(stage(), 0.0, 0.0, 0.0);  // its state follows
   }
   if (control) ar(*control_);
+  bool creep = creep_.has_value();
+  ar(creep);
+  if constexpr (Archive::is_loading::value) {
+    creep_.reset();
+    if (creep) creep_.emplace(stage());  // its state follows
+  }
+  if (creep) ar(*creep_);
+  std::vector<std::size_t> creep_stages;
+  std::vector<CreepStageReport> creep_reports;
+  for (const auto& [i, r] : outcome_.creep) {
+    creep_stages.push_back(i);
+    creep_reports.push_back(r);
+  }
+  ar(pod(creep_stages), pod(creep_reports));
+  outcome_.creep.clear();
+  for (std::size_t k = 0; k < creep_stages.size(); ++k)
+    outcome_.creep.emplace_back(creep_stages[k], creep_reports[k]);
   ar(pod(good_x_), pod(good_y_), pod(good_t_), pod(good_gx_), pod(good_gy_), resume_at_, stop_);
   ar(outcome_.exit_code, outcome_.status, outcome_.peak, outcome_.trough, pod(stalled),
      outcome_.implicit_start);

@@ -1,9 +1,10 @@
 #pragma once
 // The quasi-static load path: the model file's stages in turn (platen velocity, stress servo,
-// stress rate, cyclic blocks), each until its end condition, with the confinement on the lateral
-// boundary; an implicit elastic start where a stage asks for one.
+// stress rate, creep, cyclic blocks), each until its end condition, with the confinement on the
+// lateral boundary; an implicit elastic start where a stage asks for one.
 #include <optional>
 
+#include "creep_control.hpp"
 #include "driver.hpp"
 #include "vorodec/io/model_file.hpp"
 #include "vorodec/loading/boundary.hpp"
@@ -51,6 +52,7 @@ class QuasiStaticDriver final : public Driver {
   std::size_t si_ = 0;  // current stage
   double t0_ = 0;       // s, its start time
   std::optional<loading::StageControl> control_;
+  std::optional<CreepControl> creep_;  // creep stages
   measure::SpecimenState state_;
   double v_ = 0;               // m/s, top platen
   double stage_fraction_ = 0;  // largest progress fraction of the stage so far

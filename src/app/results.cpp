@@ -74,6 +74,26 @@ std::string implicit_json(const std::optional<ImplicitStart>& i) {
       i->passes, i->solve_seconds, i->limit);
 }
 
+// Creep stages: the creep step's range, how quasi-static each stayed, and any creep failure.
+std::string creep_json(const io::ModelConfig& cfg, const RunSummary& s) {
+  if (s.creep.empty()) return "";
+  const auto days = [](double t) {
+    return std::isnan(t) ? std::string("null") : fmt::format("{:.6g}", t / 86400.0);
+  };
+  std::string rows;
+  for (const auto& [i, r] : s.creep)
+    rows += fmt::format(
+        "{}\n    {{\"stage\": \"{}\", \"steps\": {}, \"time_step_s\": [{:.6g}, {:.6g}], "
+        "\"steps_per_day\": {:.6g}, \"max_kinetic_over_strain_energy\": {:.4g}, "
+        "\"failure_onset_days\": {}, \"collapse_days\": {}}}",
+        rows.empty() ? "" : ",", cfg.load_path.stages[i].name, r.steps, r.min_time_step,
+        r.max_time_step,
+        r.steps / ((std::isnan(r.collapse) ? cfg.load_path.stages[i].end.duration : r.collapse) /
+                   86400.0),
+        r.max_energy_ratio, days(r.failure_onset), days(r.collapse));
+  return fmt::format(",\n  \"creep_stages\": [{}\n  ]", rows);
+}
+
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,
                    const RunSummary& s, std::size_t initial_contacts, double dt, std::size_t broken,
                    const std::string& grains) {
@@ -95,7 +115,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
           "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
           "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n{}  \"failure_rate\": {:.6g},\n"
           "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
-          "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}\n}}\n",
+          "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}{}\n}}\n",
           cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
           s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
           grains, initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
@@ -104,7 +124,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
                                 "\"yy\": {:.8g}, \"xy\": {:.8g}}}",
                                 s.zones, s.zone_stress_xx, s.zone_stress_yy, s.zone_stress_xy)
                   : std::string(),
-          implicit_json(s.implicit_start)));
+          implicit_json(s.implicit_start), creep_json(cfg, s)));
 }
 
 }  // namespace
@@ -119,6 +139,7 @@ RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve 
   summary.exit_code = outcome.exit_code;
   summary.status = outcome.status;
   summary.implicit_start = outcome.implicit_start;
+  summary.creep = outcome.creep;
   summary.blocks = model.blocks.size();
   const double peak = outcome.peak, trough = outcome.trough;
   // A pulled specimen (direct tension): its elastic constants come from the tensile branch.

@@ -82,6 +82,7 @@ model::Distribution read_property(TomlSection& sec, const laws::ParamSpec& spec)
       d.fail("weibull_shape", fmt::format("is too small (got {:g}): Gamma(1 + 1/m) overflows", m));
     return dist;
   }
+  if (spec.unit == "bool") return model::Distribution::constant(sec.boolean(spec.key, false));
   const double v = sec.number(spec.key, laws::required);
   if (!in_range(spec, v))
     sec.fail(spec.key, fmt::format("must be {} (got {})", range_text(spec), v));
@@ -375,6 +376,53 @@ void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, Model
           : fmt::format("{}: --set key '{}'", sec.file(), sec.key_path("implicit_start"));
 }
 
+bool viscous_law(const LawChoice& c) {
+  return laws::find_law(c.name)->make(c.params, 0)->viscous();
+}
+bool viscous_joints(const ModelConfig& cfg) {
+  if (viscous_law(cfg.joints) || (cfg.joint_mix && viscous_law(cfg.joint_mix->law))) return true;
+  if (!cfg.grains) return false;
+  const GrainConfig& g = *cfg.grains;
+  if (viscous_law(g.transgranular)) return true;
+  for (const auto& in : g.inside)
+    if (in && viscous_law(*in)) return true;
+  for (const auto& p : g.pairs)
+    if (viscous_law(p.law)) return true;
+  return false;
+}
+
+// control = "creep": the servo holds sigma1 = confining_stress + deviatoric_stress for a duration
+// (s) or duration_days, at the creep step (loading::CreepSettings).
+void read_creep(TomlSection& sec, loading::Stage& st, const ModelConfig& cfg) {
+  st.control = loading::Control::axial_stress;
+  st.creep.enabled = true;
+  st.target_stress =
+      cfg.load_path.confining_stress + sec.positive("deviatoric_stress", laws::required);
+  // The servo closes 80 % of the force error per step; a creep step is seconds long, so its speed
+  // cap (m/s) is off unless given.
+  st.platen_velocity = sec.positive("platen_velocity", 1e300);
+  const bool seconds = sec.has("duration"), days = sec.has("duration_days");
+  if (seconds == days)
+    sec.fail(seconds ? "duration_days" : "duration",
+             "a creep stage needs exactly one of duration (s) and duration_days (d)");
+  st.end.duration = seconds ? sec.positive("duration", laws::required)
+                            : 86400.0 * sec.positive("duration_days", laws::required);
+  if (sec.has("end_time")) sec.fail("end_time", "a creep stage ends by duration or duration_days");
+  st.creep.step_factor = sec.positive("creep_step_factor", st.creep.step_factor);
+  if (sec.has("creep_time_step")) st.creep.time_step = sec.positive("creep_time_step", 0);
+  st.creep.target_ratio = sec.positive("creep_target_ratio", st.creep.target_ratio);
+  st.creep.interval_steps = sec.integer("creep_interval_steps", st.creep.interval_steps, 1);
+  if (cfg.deformable.enabled)
+    sec.fail("control", "creep stages need rigid blocks ([blocks] deformable = false)");
+  if (cfg.solver.fixed_time_step > 0)
+    sec.fail("control", "creep stages set the step themselves: remove [solver] fixed_time_step");
+  if (st.creep.time_step == 0 && !viscous_joints(cfg))
+    sec.fail("control",
+             fmt::format("a creep stage sizes its step from the contacts' dashpots, and law '{}' "
+                         "has none: use law = \"burgers\" or give creep_time_step (s)",
+                         cfg.joints.name));
+}
+
 void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>& stages,
                  ModelConfig& cfg) {
   loading::Stage st;
@@ -399,6 +447,8 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     st.control = loading::Control::axial_stress;
     st.target_stress = sec.non_negative("target_stress", laws::required);
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
+  } else if (control == "creep") {
+    read_creep(sec, st, cfg);
   } else if (control == "stress_rate") {
     st.control = loading::Control::stress_rate;
     st.stress_rate = sec.number("stress_rate", laws::required);
@@ -406,7 +456,7 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
   } else {
     sec.fail("control", fmt::format("must be \"platen_velocity\", \"axial_stress\", "
-                                    "\"stress_rate\" or \"cyclic\" (got \"{}\")",
+                                    "\"stress_rate\", \"creep\" or \"cyclic\" (got \"{}\")",
                                     control));
   }
   st.ramp_time = sec.non_negative("ramp_time", 0.0);
@@ -417,7 +467,8 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     if (!(st.end.post_peak_fraction > 0 && st.end.post_peak_fraction < 1))
       sec.fail("end_post_peak_fraction", "must be between 0 and 1");
   }
-  st.end.duration = sec.has("end_time") ? sec.positive("end_time", nan) : nan;
+  if (st.control != loading::Control::axial_stress || !st.creep.enabled)
+    st.end.duration = sec.has("end_time") ? sec.positive("end_time", nan) : nan;
   st.end.axial_stress = sec.has("end_axial_stress") ? sec.number("end_axial_stress", nan) : nan;
   if (st.control == loading::Control::stress_rate && std::isnan(st.end.axial_stress) &&
       std::isnan(st.end.duration))
@@ -657,11 +708,26 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     blocks.finish();
     TomlSection joints = top.sub("joints");
     cfg.joints = read_law(joints, "mohr_coulomb");
+    if (joints.has("mix")) {
+      TomlSection mix = joints.sub("mix");
+      ModelConfig::JointMix m;
+      m.fraction = mix.positive("fraction", laws::required);
+      if (m.fraction >= 1)
+        mix.fail("fraction", fmt::format("must be a fraction of the joints in (0, 1) (got {})",
+                                         m.fraction));
+      m.law = read_law(mix, "mohr_coulomb");
+      mix.finish();
+      cfg.joint_mix = std::move(m);
+    }
     joints.finish();
   }
 
-  // Platens: frictionless, no tension, as stiff as the joints unless given.
-  const double jkn_mean = cfg.joints.params.count("jkn") ? cfg.joints.params.at("jkn").mean() : 0;
+  // Platens: frictionless, no tension, as stiff as the joints (their normal or Maxwell spring)
+  // unless given.
+  const auto& jp = cfg.joints.params;
+  const double jkn_mean = jp.count("jkn")   ? jp.at("jkn").mean()
+                          : jp.count("kmn") ? jp.at("kmn").mean()
+                                            : 0;
   cfg.platens.name = "mohr_coulomb";
   if (top.has("platens")) {
     TomlSection p = top.sub("platens");

@@ -7,9 +7,11 @@ namespace vorodec::laws {
 // One row per law; each law's source defines its LawInfo.
 extern const LawInfo mohr_coulomb_info;
 extern const LawInfo linear_elastic_info;
+extern const LawInfo burgers_info;
 
 std::span<const LawInfo> law_registry() {
-  static const std::array<LawInfo, 2> registry{mohr_coulomb_info, linear_elastic_info};
+  static const std::array<LawInfo, 3> registry{mohr_coulomb_info, linear_elastic_info,
+                                                   burgers_info};
   return registry;
 }
 

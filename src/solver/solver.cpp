@@ -152,6 +152,34 @@ void Solver::compute_time_step() {
   }
 }
 
+void Solver::rescale_time_step(double dt) {
+  const double before = dt_;
+  settings_.time_step = dt;
+  auto& bl = model_.blocks;
+  if (dt == 0) {  // back to the true masses (density scaling only raises them)
+    bl.mass = bl.gravity_mass;
+    bl.inertia = bl.true_inertia;
+  }
+  compute_time_step();
+  const double f = before / dt_;
+  for (std::size_t b = 0; b < bl.size(); ++b) {
+    if (bl.prescribed[b]) continue;
+    bl.vx[b] *= f;
+    bl.vy[b] *= f;
+    bl.omega[b] *= f;
+  }
+}
+
+double Solver::relaxation_time() const {
+  double t = std::numeric_limits<double>::infinity();
+  for (const auto& law : laws_) t = std::min(t, law->relaxation_time());
+  return t;
+}
+
+bool Solver::viscous() const {
+  return std::any_of(laws_.begin(), laws_.end(), [](const auto& l) { return l->viscous(); });
+}
+
 void Solver::step() {
   auto& bl = model_.blocks;
   const auto nb = static_cast<std::int64_t>(bl.size());
@@ -210,6 +238,7 @@ void Solver::contact_forces() {
   }
   energy_.slip += ctx.totals.dissipated_slip;
   energy_.breakage += ctx.totals.dissipated_breakage;
+  energy_.viscous += ctx.totals.dissipated_viscous;
   gather_shared_forces();
 }
 

@@ -388,7 +388,9 @@ std::vector<Ladder> analytic_ladders() {
     const DampingRun d = damped_spring(0.1, sf);
     damping.rungs.push_back({d.dt, d.worst_ratio, d.error, since(t0), sf == 0.8});
   }
-  return {period, damping};
+  std::vector<Ladder> out{period, damping};
+  for (Ladder& l : a10_ladders()) out.push_back(std::move(l));
+  return out;
 }
 
 std::vector<NamedCase> analytic_cases() {
@@ -406,6 +408,8 @@ std::vector<NamedCase> analytic_cases() {
           {"A7", a7_weibull_ks},
           {"A7", a7_weibull_mean},
           {"A8", a8_local_damping},
+          {"A10", [] { return a10_burgers_creep(false); }},
+          {"A10", [] { return a10_burgers_creep(true); }},
           {"A13", a13_patch_test}};
 }
 

@@ -35,6 +35,9 @@ CaseResult a7_weibull_ks();
 CaseResult a7_weibull_mean();
 CaseResult a8_local_damping();
 
+// One Burger's contact held at a constant force (fast: part of the unit tests too).
+CaseResult a10_burgers_creep(bool shear);
+
 // Deformable blocks (fast: part of the unit tests too).
 CaseResult a13_patch_test();
 // A deformable column on a rigid platen under its own weight, and between platens under uniaxial
@@ -106,6 +109,9 @@ struct Ladder {
   double order() const;
 };
 std::vector<Ladder> analytic_ladders();  // A3 period and A8 damping against the time step
+// A10 displacement against the time step, from the consistent start (second order) and from a
+// force stepped up from zero (first order).
+std::vector<Ladder> a10_ladders();
 // The default model (models/ucs_marble.toml), one thread: UCS and E against the platen speed and
 // against the density-scaling time step, each relative to its finest run. Minutes.
 std::vector<Ladder> model_ladders(const std::string& source_dir, const std::string& binary);

@@ -1,6 +1,7 @@
 #pragma once
 // Wires a model file to a run: specimen -> model -> solver loop over the load path -> outputs.
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -61,6 +62,15 @@ struct ImplicitStart {
   }
 };
 
+// What a creep stage did (summary.json).
+struct CreepStageReport {
+  double max_time_step = 0, min_time_step = 0;  // s, the creep step's range in the stage
+  double max_energy_ratio = 0;                  // -, largest kinetic / contact strain energy
+  long steps = 0;
+  double failure_onset = std::numeric_limits<double>::quiet_NaN();  // s in the stage
+  double collapse = std::numeric_limits<double>::quiet_NaN();       // s in the stage
+};
+
 struct RunSummary {
   // 0 finished, 3 stopped unstable, 4 step limit of the model file reached, kStoppedForResume
   int exit_code = 0;
@@ -77,6 +87,8 @@ struct RunSummary {
   // Pa, zone-area-weighted mean stress of the specimen at the end (compression positive).
   double zone_stress_xx = 0, zone_stress_yy = 0, zone_stress_xy = 0;
   std::optional<ImplicitStart> implicit_start;
+  // Creep stages: (stage index, what it did), in stage order.
+  std::vector<std::pair<std::size_t, CreepStageReport>> creep;
 };
 
 // Runs the load path. `overrides` are those cfg was read with (a checkpoint records them).

@@ -96,6 +96,13 @@ struct ModelConfig {
   DeformableSettings deformable;     // [blocks] deformable, zone_size, E, nu
   double rounding_length = 0;        // m
   LawChoice joints;  // specimen block to block (grain-based: the default intergranular law)
+  // [joints.mix]: this fraction of the specimen's joints (block pairs, drawn at random from the
+  // seed) take a second law (paper 001's reading (b): Burger's and bonded contacts side by side).
+  struct JointMix {
+    double fraction = 0;  // -, in (0, 1)
+    LawChoice law;
+  };
+  std::optional<JointMix> joint_mix;
   std::optional<GrainConfig> grains;  // grain-based specimen
   LawChoice platens;                  // platen to specimen
   bool platens_bonded = false;        // glued to the specimen (direct tension)

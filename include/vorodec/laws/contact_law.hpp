@@ -50,6 +50,7 @@ struct CrackEvent {
 struct ContactTotals {
   double dissipated_slip = 0.0;      // J per m, friction (and dilation) work of this step
   double dissipated_breakage = 0.0;  // J per m, spring energy released by failures this step
+  double dissipated_viscous = 0.0;   // J per m, dashpot work (viscous laws) this step
 };
 
 // Contacts [begin, end) cut into `chunks` contiguous parts: part t, [first, second).
@@ -114,6 +115,11 @@ class LawGroup {
   virtual std::size_t size() const = 0;
   // N/m, the larger of the normal and shear spring stiffness of local contact i (time step).
   virtual double max_stiffness(std::size_t i) const = 0;
+  // s, the shortest relaxation time (dashpot / spring) of the group's contacts: the creep time
+  // step's scale; infinity for a law without dashpots.
+  virtual double relaxation_time() const = 0;
+  // The law has dashpots: its evaluate reports their work (ContactTotals::dissipated_viscous).
+  virtual bool viscous() const = 0;
   // J per m, elastic energy held in local contact i given its forces.
   virtual double strain_energy(std::size_t i, double fn, double fs) const = 0;
   // Bytes of law state and properties per contact (memory accounting).

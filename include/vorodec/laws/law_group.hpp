@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "vorodec/checkpoint/archive_io.hpp"
@@ -25,7 +26,14 @@ class LawGroupOf final : public LawGroup {
   std::size_t size() const override { return props_.size(); }
   double max_stiffness(std::size_t i) const override { return Law::max_stiffness(props_[i]); }
   double strain_energy(std::size_t i, double fn, double fs) const override {
-    return Law::strain_energy(props_[i], fn, fs);
+    return energy(props_[i], state_[i], fn, fs);
+  }
+  bool viscous() const override { return is_viscous; }
+  double relaxation_time() const override {
+    double t = std::numeric_limits<double>::infinity();
+    if constexpr (is_viscous)
+      for (const auto& p : props_) t = std::min(t, Law::relaxation_time(p));
+    return t;
   }
   std::size_t bytes_per_contact() const override {
     return sizeof(typename Law::Props) + sizeof(typename Law::State);
@@ -69,7 +77,10 @@ class LawGroupOf final : public LawGroup {
         state[i] = state_[static_cast<std::size_t>(old_of_new[i])];
       } else {
         props[i] = Law::sample(params_, seed_, fresh[i]);
-        state[i] = Law::initial_state(fresh[i]);
+        if constexpr (requires { Law::initial_state(props[i], fresh[i]); })
+          state[i] = Law::initial_state(props[i], fresh[i]);
+        else
+          state[i] = Law::initial_state(fresh[i]);
       }
     }
     props_.swap(props);
@@ -90,7 +101,7 @@ class LawGroupOf final : public LawGroup {
     model::Blocks& bl = *ctx.blocks;
     model::Zoning& z = *ctx.zoning;
     const Loop loop = loop_constants(ctx);
-    double slip = 0.0, breakage = 0.0;
+    double slip = 0.0, breakage = 0.0, dashpots = 0.0;
     auto& cracks = (*ctx.cracks_per_chunk)[0];
     for (std::size_t i = begin; i < end; ++i) {
       model::Contact& c = ctx.contacts[i];
@@ -101,7 +112,8 @@ class LawGroupOf final : public LawGroup {
       const model::Point va = model::velocity_at(bl, z, a, pa, f.point);
       const model::Point vb = model::velocity_at(bl, z, b, pb, f.point);
       const model::Point force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f,
-                                        va.x - vb.x, va.y - vb.y, cracks, slip, breakage);
+                                        va.x - vb.x, va.y - vb.y, cracks, slip, breakage,
+                                        dashpots);
       const std::uint8_t shared = ctx.shared_sides[i];
       const auto apply = [&](std::size_t blk, const model::BodyPoint& p, double sign, bool on_b) {
         if (p.g0 >= 0) {
@@ -133,9 +145,20 @@ class LawGroupOf final : public LawGroup {
     }
     ctx.totals.dissipated_slip += slip;
     ctx.totals.dissipated_breakage += breakage;
+    ctx.totals.dissipated_viscous += dashpots;
   }
 
  private:
+  // A viscous law's evaluate also returns its dashpots' work of the step.
+  static constexpr bool is_viscous = requires { Law::viscous; };
+  static double energy(const typename Law::Props& p, [[maybe_unused]] const typename Law::State& st,
+                       double fn, double fs) {
+    if constexpr (is_viscous)
+      return Law::strain_energy(p, st, fn, fs);
+    else
+      return Law::strain_energy(p, fn, fs);
+  }
+
   // From this many contacts the corner records outgrow the L2 cache and prefetching pays (1e4
   // blocks: -14 % per step); below it, it only adds instructions (+8 % in the default model).
   static constexpr std::size_t prefetch_from = 16384, prefetch_ahead = 8;
@@ -158,6 +181,7 @@ class LawGroupOf final : public LawGroup {
   void step_range(StepContext& ctx, std::size_t begin, std::size_t end) {
     const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
+    if constexpr (is_viscous) dashpot_parts_.assign(static_cast<std::size_t>(chunks), 0.0);
     // One part per thread; a thread the runtime did not grant (or a group too small to be worth
     // a parallel region) leaves its part to the others.
 #pragma omp parallel num_threads(chunks) if (end - begin >= 2048) reduction(+ : slip, breakage)
@@ -172,6 +196,7 @@ class LawGroupOf final : public LawGroup {
       model::BlockForceSum* sums = ctx.sums;
       const Loop loop = loop_constants(ctx);
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
+      double dashpots = 0.0;  // viscous laws: this part's dashpot work
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
       // Walked by pointers: an index would be one more register, spilled, in a loop short of them.
       typename Law::Props* props = loop.props + (lo - begin);
@@ -190,7 +215,7 @@ class LawGroupOf final : public LawGroup {
         const double vry =
             (ka.vy + ka.omega * (f.point.x - ka.x)) - (kb.vy + kb.omega * (f.point.x - kb.x));
         const model::Point force =
-            update(loop, c, *props, *state, f, vrx, vry, cracks, slip, breakage);
+            update(loop, c, *props, *state, f, vrx, vry, cracks, slip, breakage, dashpots);
         const double fx = force.x, fy = force.y;
         const double ma = (f.point.x - ka.x) * fy - (f.point.y - ka.y) * fx;
         const double mb = (f.point.x - kb.x) * fy - (f.point.y - kb.y) * fx;
@@ -241,9 +266,12 @@ class LawGroupOf final : public LawGroup {
           first = stop;
         }
       }
+      if constexpr (is_viscous) dashpot_parts_[static_cast<std::size_t>(t)] = dashpots;
     }
     ctx.totals.dissipated_slip += slip;
     ctx.totals.dissipated_breakage += breakage;
+    if constexpr (is_viscous)
+      for (const double w : dashpot_parts_) ctx.totals.dissipated_viscous += w;
   }
 
   // What every contact of a step reads, in locals: behind a pointer the compiler would reload
@@ -264,11 +292,19 @@ class LawGroupOf final : public LawGroup {
                                                     typename Law::State& state,
                                                     const model::ContactFrame& f, double vrx,
                                                     double vry, std::vector<CrackEvent>& cracks,
-                                                    double& slip, double& breakage) {
+                                                    double& slip, double& breakage,
+                                                    double& dashpots) {
     const model::Point s{-f.n.y, f.n.x};
     const double dt = loop.dt;
     const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
-    const LawResult r = Law::evaluate(k, props, state);
+    double viscous_work = 0.0, energy_before = 0.0;
+    if constexpr (is_viscous) energy_before = Law::strain_energy(props, state, c.fn, c.fs);
+    const LawResult r = [&] {
+      if constexpr (is_viscous)
+        return Law::evaluate(k, props, state, viscous_work);
+      else
+        return Law::evaluate(k, props, state);
+    }();
     // Energy a contact dissipates in one step: work done on it minus its strain-energy change
     // (zero by construction in an elastic step).
     double dissipated = 0.0;
@@ -278,7 +314,13 @@ class LawGroupOf final : public LawGroup {
       const double fn0 = c.fn, fs0 = c.fs;
       const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
       dissipated =
-          work - (Law::strain_energy(props, r.fn, r.fs) - Law::strain_energy(props, fn0, fs0));
+          work - (energy(props, state, r.fn, r.fs) - [&] {
+            if constexpr (is_viscous)
+              return energy_before;
+            else
+              return Law::strain_energy(props, fn0, fs0);
+          }()) - viscous_work;
+      dashpots += viscous_work;
     }
     c.gap = f.gap;
     c.fn = r.fn;
@@ -303,6 +345,7 @@ class LawGroupOf final : public LawGroup {
   std::uint64_t seed_;
   std::vector<typename Law::Props> props_;
   std::vector<typename Law::State> state_;
+  std::vector<double> dashpot_parts_;  // per thread part, summed in part order
 };
 
 }  // namespace vorodec::laws

@@ -7,6 +7,7 @@
 
 #include "vorodec/laws/contact_law.hpp"
 #include "vorodec/model/model.hpp"
+#include "vorodec/model/weibull.hpp"
 
 namespace vorodec::solver {
 
@@ -35,9 +36,21 @@ struct LawTable {
     return bond[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)];
   }
   GrainLaws grains;
+  // Specimen joints of a non-grain specimen given to a second law: a block pair takes `law` when
+  // its keyed uniform variate is below `fraction` (every point contact of the joint alike).
+  struct Mix {
+    int law = -1;
+    double fraction = 0;
+    std::uint64_t seed = 0;
+  } mix;
   // The law group of blocks a and b.
   int for_blocks(const model::Blocks& bl, std::uint32_t a, std::uint32_t b) const {
     const int l = for_pair(bl.group[a], bl.group[b]);
+    if (mix.law >= 0 && bl.group[a] == model::Group::specimen &&
+        bl.group[b] == model::Group::specimen)
+      return model::keyed_uniform(mix.seed, std::min(a, b), std::max(a, b)) < mix.fraction
+                 ? mix.law
+                 : l;
     if (grains.grain_of_block.empty() || bl.group[a] != model::Group::specimen ||
         bl.group[b] != model::Group::specimen)
       return l;

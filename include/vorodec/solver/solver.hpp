@@ -35,6 +35,7 @@ struct Energy {
   double damping = 0.0;
   double slip = 0.0;
   double breakage = 0.0;
+  double viscous = 0.0;  // dashpots of viscous (Burger's) contacts
 };
 
 class Solver {
@@ -58,6 +59,16 @@ class Solver {
   double dt() const { return dt_; }
   // s, safety factor x the smallest sqrt(m/k) at the last detection (after density scaling).
   double critical_time_step() const { return critical_dt_; }
+  // s, the density-scaling step (0: none).
+  double scaling_time_step() const { return settings_.time_step; }
+  // Creep stages: density scaling to a new step dt (s). Free blocks' velocities scale by the old
+  // over the new step, so each moves as far per step as before: with every mass proportional to
+  // dt^2 the discrete motion, and the kinetic energy, are unchanged (rigid blocks only).
+  void rescale_time_step(double dt);
+  // s, the shortest relaxation time of any contact (infinity without viscous laws).
+  double relaxation_time() const;
+  // Some law group has dashpots (its work is the energy term `viscous`).
+  bool viscous() const;
   long steps() const { return steps_; }
   const Energy& energy() const { return energy_; }
   const std::vector<laws::CrackEvent>& cracks() const { return cracks_; }

@@ -1,0 +1,48 @@
+#pragma once
+// A creep stage's clock: the creep step (density scaling sized to the contacts' relaxation time,
+// adapted by the unbalanced-force ratio), how quasi-static the stage stayed (its largest kinetic
+// over strain energy), and creep failure: the collapse that ends the stage and the onset of the
+// accelerating (tertiary) creep before it.
+#include <limits>
+#include <vector>
+
+#include "vorodec/app/simulation.hpp"
+#include "vorodec/checkpoint/archive_io.hpp"
+#include "vorodec/loading/load_path.hpp"
+#include "vorodec/measure/specimen.hpp"
+#include "vorodec/solver/solver.hpp"
+
+namespace vorodec::app {
+
+class CreepControl {
+ public:
+  // Starts the stage: sets the solver's step to the stage's creep step.
+  CreepControl(const loading::Stage& stage, solver::Solver& solver);
+  // A control whose state a checkpoint then loads (the solver's step is loaded with the solver).
+  explicit CreepControl(const loading::Stage& stage) : stage_(stage), max_dt_(0), window_(0) {}
+  // After each step of the stage (s: the specimen after it, ts: time in the stage); true once the
+  // specimen has collapsed.
+  bool after_step(solver::Solver& solver, const measure::SpecimenState& s, double ts);
+  const CreepStageReport& report() const { return report_; }
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(max_dt_, window_, window_t0_, window_e0_, min_rate_, below_, started_,
+       checkpoint::bytes(report_), checkpoint::pod(rates_), checkpoint::pod(rate_ends_));
+  }
+
+ private:
+  double failure_onset() const;
+
+  const loading::Stage& stage_;
+  double max_dt_;
+  double window_;  // s, span of one strain-rate window: a 200th of the stage
+  double window_t0_ = 0, window_e0_ = 0;
+  double min_rate_ = std::numeric_limits<double>::infinity();  // 1/s, over windows after the first
+  long below_ = 0;  // consecutive checks with the stress below 90 % of its target
+  bool started_ = false;
+  CreepStageReport report_;
+  std::vector<double> rates_, rate_ends_;  // 1/s and s in the stage, per finished window
+};
+
+}  // namespace vorodec::app
