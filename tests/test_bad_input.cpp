@@ -305,3 +305,75 @@ TEST(BadInput, AdaptiveVelocityMisspelledOrMissingKeyIsNamed) {
                                "1e-3, min_velocity = 0.01, max_velocity = 0.1, max_change = 1 }"),
                        "stage[0].adaptive_velocity.max_change", 17, "must be > 1"));
 }
+
+namespace {
+
+// The good model with Burger's joints and a creep stage after its loading stage.
+const char* burgers_model = R"(seed = 3
+[specimen]
+width = 0.02
+height = 0.04
+block_count = 60
+[blocks]
+density = 2600
+[joints]
+law = "burgers"
+kmn = 2e13
+kms = 2e13
+cmn = 2e17
+cms = 2e17
+kkn = 4e13
+kks = 4e13
+ckn = 4e15
+cks = 4e15
+friction = 30
+[[stage]]
+platen_velocity = 0.05
+end_axial_strain = 0.001
+[[stage]]
+control = "creep"
+deviatoric_stress = 10e6
+duration_days = 1.0
+)";
+
+}  // namespace
+
+TEST(BadInput, BurgersModelWithACreepStagePassesCheck) {
+  const Outcome o = run_capture("check " + write_model("burgers_good", burgers_model).string());
+  EXPECT_EQ(o.code, 0) << o.output;
+}
+
+TEST(BadInput, NonPositiveBurgersSpringOrDashpotIsRejected) {
+  EXPECT_TRUE(rejected("burgers_kmn", replace(burgers_model, "kmn = 2e13", "kmn = -2e13"),
+                       "joints.kmn", 10, "must be > 0"));
+  EXPECT_TRUE(rejected("burgers_ckn", replace(burgers_model, "ckn = 4e15", "ckn = 0"),
+                       "joints.ckn", 16, "must be > 0"));
+}
+
+TEST(BadInput, BurgersKeyUnderALawWithoutItIsRejected) {
+  EXPECT_TRUE(rejected("burgers_key_under_mc", replace(good_model, "jks = 8e12", "jks = 8e12\nkmn = 8e12"),
+                       "joints.kmn", 11, "unknown key"));
+}
+
+TEST(BadInput, CreepStageWithoutItsStressIsRejected) {
+  EXPECT_TRUE(rejected("creep_no_stress",
+                       replace(burgers_model, "deviatoric_stress = 10e6", "deviatoric = 10e6"),
+                       "stage[1].deviatoric_stress", 22, "required"));
+}
+
+TEST(BadInput, CreepStageDurationMustBePositiveAndGivenOnce) {
+  EXPECT_TRUE(rejected("creep_zero_days",
+                       replace(burgers_model, "duration_days = 1.0", "duration_days = 0"),
+                       "stage[1].duration_days", 25, "must be > 0"));
+  EXPECT_TRUE(rejected("creep_two_durations",
+                       replace(burgers_model, "duration_days = 1.0",
+                               "duration_days = 1.0\nduration = 86400"),
+                       "stage[1].duration_days", 25, "exactly one of duration"));
+}
+
+TEST(BadInput, CreepStageWithoutDashpotsOrAStepIsRejected) {
+  const std::string text = std::string(good_model) +
+                           "[[stage]]\ncontrol = \"creep\"\ndeviatoric_stress = 1e6\n"
+                           "duration = 10\n";
+  EXPECT_TRUE(rejected("creep_without_dashpots", text, "stage[1].control", 18, "has none"));
+}

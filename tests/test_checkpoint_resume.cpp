@@ -378,3 +378,16 @@ TEST(Resume, DeformableRunStoppedAtItsStepLimitMatchesTheUninterruptedRun) {
   EXPECT_NO_FATAL_FAILURE(expect_resume_matches(
       "deformable_limit", kModels + "deformable_small.toml", {2000}, " --max-steps 2000"));
 }
+
+TEST(Resume, CreepRunStoppedInTheRampAndInACreepStageMatchesTheUninterruptedRun) {
+  // creep_burgers_small: the ramp ends near step 12000, the first creep stage near 17000.
+  EXPECT_NO_FATAL_FAILURE(expect_resume_matches(
+      "creep", kModels + "creep_burgers_small.toml", {6000, 14000, 19000}, " --no-vtk"));
+}
+
+TEST(CheckpointState, LoadedAndSavedAgainIsTheSameBytesInACreepStage) {
+  // A steep, short ramp, so that step 1000 lies in the first creep stage.
+  EXPECT_NO_FATAL_FAILURE(expect_state_round_trips(
+      "round_trip_creep", kModels + "creep_burgers_small.toml",
+      " --set 'stage[0].stress_rate=2e10' --set 'stage[0].end_axial_stress=6e6'"));
+}
