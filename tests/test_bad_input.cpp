@@ -346,13 +346,14 @@ TEST(BadInput, BurgersModelWithACreepStagePassesCheck) {
 TEST(BadInput, NonPositiveBurgersSpringOrDashpotIsRejected) {
   EXPECT_TRUE(rejected("burgers_kmn", replace(burgers_model, "kmn = 2e13", "kmn = -2e13"),
                        "joints.kmn", 10, "must be > 0"));
-  EXPECT_TRUE(rejected("burgers_ckn", replace(burgers_model, "ckn = 4e15", "ckn = 0"),
-                       "joints.ckn", 16, "must be > 0"));
+  EXPECT_TRUE(rejected("burgers_ckn", replace(burgers_model, "ckn = 4e15", "ckn = 0"), "joints.ckn",
+                       16, "must be > 0"));
 }
 
 TEST(BadInput, BurgersKeyUnderALawWithoutItIsRejected) {
-  EXPECT_TRUE(rejected("burgers_key_under_mc", replace(good_model, "jks = 8e12", "jks = 8e12\nkmn = 8e12"),
-                       "joints.kmn", 11, "unknown key"));
+  EXPECT_TRUE(rejected("burgers_key_under_mc",
+                       replace(good_model, "jks = 8e12", "jks = 8e12\nkmn = 8e12"), "joints.kmn",
+                       11, "unknown key"));
 }
 
 TEST(BadInput, CreepStageWithoutItsStressIsRejected) {
@@ -365,10 +366,10 @@ TEST(BadInput, CreepStageDurationMustBePositiveAndGivenOnce) {
   EXPECT_TRUE(rejected("creep_zero_days",
                        replace(burgers_model, "duration_days = 1.0", "duration_days = 0"),
                        "stage[1].duration_days", 25, "must be > 0"));
-  EXPECT_TRUE(rejected("creep_two_durations",
-                       replace(burgers_model, "duration_days = 1.0",
-                               "duration_days = 1.0\nduration = 86400"),
-                       "stage[1].duration_days", 25, "exactly one of duration"));
+  EXPECT_TRUE(rejected(
+      "creep_two_durations",
+      replace(burgers_model, "duration_days = 1.0", "duration_days = 1.0\nduration = 86400"),
+      "stage[1].duration_days", 25, "exactly one of duration"));
 }
 
 TEST(BadInput, CreepStageWithoutDashpotsOrAStepIsRejected) {

@@ -381,8 +381,8 @@ TEST(Resume, DeformableRunStoppedAtItsStepLimitMatchesTheUninterruptedRun) {
 
 TEST(Resume, CreepRunStoppedInTheRampAndInACreepStageMatchesTheUninterruptedRun) {
   // creep_burgers_small: the ramp ends near step 12000, the first creep stage near 17000.
-  EXPECT_NO_FATAL_FAILURE(expect_resume_matches(
-      "creep", kModels + "creep_burgers_small.toml", {6000, 14000, 19000}, " --no-vtk"));
+  EXPECT_NO_FATAL_FAILURE(expect_resume_matches("creep", kModels + "creep_burgers_small.toml",
+                                                {6000, 14000, 19000}, " --no-vtk"));
 }
 
 TEST(CheckpointState, LoadedAndSavedAgainIsTheSameBytesInACreepStage) {

@@ -45,7 +45,8 @@ bool CreepControl::after_step(solver::Solver& solver, const measure::SpecimenSta
     rate_ends_.push_back(ts);
     window_t0_ = ts;
     window_e0_ = s.axial_strain;
-    collapsed = min_rate_ > 0 && std::isfinite(min_rate_) && rate > collapse_rate_factor * min_rate_;
+    collapsed =
+        min_rate_ > 0 && std::isfinite(min_rate_) && rate > collapse_rate_factor * min_rate_;
   }
   const loading::CreepSettings& c = stage_.creep;
   if (solver.steps() % c.interval_steps == 0) {

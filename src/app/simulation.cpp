@@ -93,8 +93,8 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
   solver::LawTable table;
   if (cfg.grains) add_grain_laws(*cfg.grains, tess, cfg.seed, groups, table.grains);
   if (cfg.joint_mix) {
-    groups.push_back(laws::find_law(cfg.joint_mix->law.name)->make(cfg.joint_mix->law.params,
-                                                                   cfg.seed));
+    groups.push_back(
+        laws::find_law(cfg.joint_mix->law.name)->make(cfg.joint_mix->law.params, cfg.seed));
     // A seed of its own, so the split and the contacts' property draws are independent.
     table.mix = {static_cast<int>(groups.size() - 1), cfg.joint_mix->fraction,
                  cfg.seed ^ 0x9e3779b97f4a7c15ull};

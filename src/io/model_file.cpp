@@ -713,8 +713,8 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
       ModelConfig::JointMix m;
       m.fraction = mix.positive("fraction", laws::required);
       if (m.fraction >= 1)
-        mix.fail("fraction", fmt::format("must be a fraction of the joints in (0, 1) (got {})",
-                                         m.fraction));
+        mix.fail("fraction",
+                 fmt::format("must be a fraction of the joints in (0, 1) (got {})", m.fraction));
       m.law = read_law(mix, "mohr_coulomb");
       mix.finish();
       cfg.joint_mix = std::move(m);

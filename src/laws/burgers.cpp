@@ -47,8 +47,8 @@ Burgers::Props Burgers::sample(const Params& p, std::uint64_t seed, const NewCon
 
 namespace {
 constexpr ParamSpec burgers_params[] = {
-    {"kmn", "Pa/m", "Maxwell spring, normal, per unit contact length", 0, false, no_limit,
-     required, true, false},
+    {"kmn", "Pa/m", "Maxwell spring, normal, per unit contact length", 0, false, no_limit, required,
+     true, false},
     {"cmn", "Pa s/m", "Maxwell dashpot, normal, per unit contact length", 0, false, no_limit,
      required, true, false},
     {"kkn", "Pa/m", "Kelvin spring, normal, per unit contact length", 0, false, no_limit, required,

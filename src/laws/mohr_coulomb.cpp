@@ -24,8 +24,7 @@ MohrCoulomb::Params MohrCoulomb::params_from(const LawParams& p) {
 }
 
 MohrCoulomb::Props MohrCoulomb::sample(const Params& p, std::uint64_t seed, const NewContact& c) {
-  return {p.jkn.sample(seed, c.id, jkn) * c.length,
-          p.jks.sample(seed, c.id, jks) * c.length,
+  return {p.jkn.sample(seed, c.id, jkn) * c.length, p.jks.sample(seed, c.id, jks) * c.length,
           sample_strength(p.strength, seed, c, {tension, cohesion, friction, residual_friction}),
           std::tan(p.dilation.sample(seed, c.id, dilation) * std::numbers::pi / 180.0)};
 }

@@ -11,7 +11,7 @@ extern const LawInfo burgers_info;
 
 std::span<const LawInfo> law_registry() {
   static const std::array<LawInfo, 3> registry{mohr_coulomb_info, linear_elastic_info,
-                                                   burgers_info};
+                                               burgers_info};
   return registry;
 }
 

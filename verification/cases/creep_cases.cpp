@@ -12,10 +12,10 @@ namespace {
 
 using laws::Burgers;
 
-constexpr double L = 1e-3;        // m, contact length
-constexpr double F = 1e4;         // N, the held force
-constexpr double tau_k = 1e4;     // s, Kelvin retardation time Ck/Kk
-constexpr double t_end = 5e4;     // s, five retardation times: primary creep has run its course
+constexpr double L = 1e-3;          // m, contact length
+constexpr double F = 1e4;           // N, the held force
+constexpr double tau_k = 1e4;       // s, Kelvin retardation time Ck/Kk
+constexpr double t_end = 5e4;       // s, five retardation times: primary creep has run its course
 constexpr double default_dt = 1e2;  // s, tau_k / 100
 
 Burgers::Props contact() {
@@ -31,7 +31,7 @@ double exact(const Burgers::Props& p, double t) {
 }
 
 struct CreepRun {
-  double u = 0;  // m, displacement at t_end
+  double u = 0;      // m, displacement at t_end
   double worst = 0;  // largest relative error over the steps
 };
 
@@ -109,8 +109,8 @@ std::vector<Ladder> a10_ladders() {
     for (const double dt : {1e3, 5e2, 2.5e2, 1.25e2, 62.5, 31.25, 15.625}) {
       const auto t0 = std::chrono::steady_clock::now();
       const CreepRun r = hold_force(false, consistent, dt);
-      l.rungs.push_back({dt, r.u, std::abs(r.u - l.reference_value) / l.reference_value,
-                         since(t0), dt == 1.25e2});
+      l.rungs.push_back({dt, r.u, std::abs(r.u - l.reference_value) / l.reference_value, since(t0),
+                         dt == 1.25e2});
     }
     out.push_back(l);
   }

@@ -50,9 +50,9 @@ struct Burgers {
     double carries_tension;  // 1: no tension cut-off (PFC's mode 0); 0: the strength layer's
   };
   static constexpr std::array<std::string_view, 13> property_names{
-      "kmn [N/m]",         "cmn [N s/m]",        "kkn [N/m]", "ckn [N s/m]",     "kms [N/m]",
-      "cms [N s/m]",       "kks [N/m]",          "cks [N s/m]", "tension_force [N]",
-      "cohesion_force [N]", "tan_phi",           "tan_phi_res", "carries_tension"};
+      "kmn [N/m]",   "cmn [N s/m]", "kkn [N/m]",      "ckn [N s/m]",       "kms [N/m]",
+      "cms [N s/m]", "kks [N/m]",   "cks [N s/m]",    "tension_force [N]", "cohesion_force [N]",
+      "tan_phi",     "tan_phi_res", "carries_tension"};
   struct State {
     double fn, ukn, umn;  // N, m, m: normal force, Kelvin and Maxwell-dashpot displacements
     double origin;        // m, gap at which the contact was unloaded when it appeared
@@ -71,8 +71,8 @@ struct Burgers {
   static double max_stiffness(const Props& p) { return std::max(p.normal.km, p.shear.km); }
   // s, the shortest relaxation time of the contact's elements (creep time step).
   static double relaxation_time(const Props& p) {
-    return std::min({p.normal.ck / p.normal.kk, p.normal.cm / p.normal.km,
-                     p.shear.ck / p.shear.kk, p.shear.cm / p.shear.km});
+    return std::min({p.normal.ck / p.normal.kk, p.normal.cm / p.normal.km, p.shear.ck / p.shear.kk,
+                     p.shear.cm / p.shear.km});
   }
   // J per m: the Maxwell springs (from the forces) and the Kelvin springs (from the state).
   static double strain_energy(const Props& p, const State& st, double fn, double fs) {

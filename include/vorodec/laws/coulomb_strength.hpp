@@ -22,11 +22,18 @@ inline constexpr ParamSpec tension_spec{
     "tension", "Pa", "tensile strength (lost at failure)", 0, true, no_limit, 0.0, true, false};
 inline constexpr ParamSpec cohesion_spec{
     "cohesion", "Pa", "cohesion (lost at failure)", 0, true, no_limit, 0.0, true, false};
-inline constexpr ParamSpec friction_spec{"friction", "deg", "friction angle", 0, true, 89.9,
-                                         required, true, false};
+inline constexpr ParamSpec friction_spec{
+    "friction", "deg", "friction angle", 0, true, 89.9, required, true, false};
 inline constexpr ParamSpec residual_friction_spec{
-    "residual_friction", "deg", "friction angle after failure (default: friction)", 0, true, 89.9,
-    required, true, true};
+    "residual_friction",
+    "deg",
+    "friction angle after failure (default: friction)",
+    0,
+    true,
+    89.9,
+    required,
+    true,
+    true};
 
 struct CoulombParams {
   model::Distribution tension, cohesion, friction, residual_friction;
@@ -77,8 +84,8 @@ CoulombStrength sample_strength(const CoulombParams& p, std::uint64_t seed, cons
 // First factor s >= 0 at which forces (fn + s dfn, fs + s dfs) reach the tension cut-off or
 // either side of the Coulomb envelope (residual once broken); infinity if never. A joint without
 // shear stiffness (shear = false) has no envelope to reach.
-inline double coulomb_reach(const CoulombStrength& p, bool broken, bool shear, double fn,
-                            double fs, double dfn, double dfs) {
+inline double coulomb_reach(const CoulombStrength& p, bool broken, bool shear, double fn, double fs,
+                            double dfn, double dfs) {
   const double tension = broken ? 0.0 : p.tension_force;
   const double c = broken ? 0.0 : p.cohesion_force;
   const double t = broken ? p.tan_phi_res : p.tan_phi;

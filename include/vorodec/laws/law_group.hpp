@@ -112,8 +112,7 @@ class LawGroupOf final : public LawGroup {
       const model::Point va = model::velocity_at(bl, z, a, pa, f.point);
       const model::Point vb = model::velocity_at(bl, z, b, pb, f.point);
       const model::Point force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f,
-                                        va.x - vb.x, va.y - vb.y, cracks, slip, breakage,
-                                        dashpots);
+                                        va.x - vb.x, va.y - vb.y, cracks, slip, breakage, dashpots);
       const std::uint8_t shared = ctx.shared_sides[i];
       const auto apply = [&](std::size_t blk, const model::BodyPoint& p, double sign, bool on_b) {
         if (p.g0 >= 0) {
@@ -182,8 +181,8 @@ class LawGroupOf final : public LawGroup {
     const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
     if constexpr (is_viscous) dashpot_parts_.assign(static_cast<std::size_t>(chunks), 0.0);
-    // One part per thread; a thread the runtime did not grant (or a group too small to be worth
-    // a parallel region) leaves its part to the others.
+      // One part per thread; a thread the runtime did not grant (or a group too small to be worth
+      // a parallel region) leaves its part to the others.
 #pragma omp parallel num_threads(chunks) if (end - begin >= 2048) reduction(+ : slip, breakage)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
       // Private to the thread: shared ones are read through the region's data block, again after
@@ -287,13 +286,10 @@ class LawGroupOf final : public LawGroup {
 
   // Law::evaluate for contact c with its properties and state, relative velocity (vrx, vry) of a
   // with respect to b, its bookkeeping (state, crack, dissipation), and the force on a.
-  [[gnu::always_inline]] inline model::Point update(const Loop& loop, model::Contact& c,
-                                                    const typename Law::Props& props,
-                                                    typename Law::State& state,
-                                                    const model::ContactFrame& f, double vrx,
-                                                    double vry, std::vector<CrackEvent>& cracks,
-                                                    double& slip, double& breakage,
-                                                    double& dashpots) {
+  [[gnu::always_inline]] inline model::Point update(
+      const Loop& loop, model::Contact& c, const typename Law::Props& props,
+      typename Law::State& state, const model::ContactFrame& f, double vrx, double vry,
+      std::vector<CrackEvent>& cracks, double& slip, double& breakage, double& dashpots) {
     const model::Point s{-f.n.y, f.n.x};
     const double dt = loop.dt;
     const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
@@ -313,13 +309,15 @@ class LawGroupOf final : public LawGroup {
       // which would then load and keep them (on the stack) for every contact.
       const double fn0 = c.fn, fs0 = c.fs;
       const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
-      dissipated =
-          work - (energy(props, state, r.fn, r.fs) - [&] {
-            if constexpr (is_viscous)
-              return energy_before;
-            else
-              return Law::strain_energy(props, fn0, fs0);
-          }()) - viscous_work;
+      dissipated = work -
+                   (energy(props, state, r.fn, r.fs) -
+                    [&] {
+                      if constexpr (is_viscous)
+                        return energy_before;
+                      else
+                        return Law::strain_energy(props, fn0, fs0);
+                    }()) -
+                   viscous_work;
       dashpots += viscous_work;
     }
     c.gap = f.gap;

@@ -48,9 +48,8 @@ struct LawTable {
     const int l = for_pair(bl.group[a], bl.group[b]);
     if (mix.law >= 0 && bl.group[a] == model::Group::specimen &&
         bl.group[b] == model::Group::specimen)
-      return model::keyed_uniform(mix.seed, std::min(a, b), std::max(a, b)) < mix.fraction
-                 ? mix.law
-                 : l;
+      return model::keyed_uniform(mix.seed, std::min(a, b), std::max(a, b)) < mix.fraction ? mix.law
+                                                                                           : l;
     if (grains.grain_of_block.empty() || bl.group[a] != model::Group::specimen ||
         bl.group[b] != model::Group::specimen)
       return l;
