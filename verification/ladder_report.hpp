@@ -51,6 +51,31 @@ inline void write_ladders(std::ostream& out, const std::vector<Ladder>& analytic
   if (std::system(cmd.c_str()) == 0) out << "\n![convergence ladders](ladders.png)\n";
 }
 
+// A whole-model ladder as error against wall time (a cost-accuracy table and plot,
+// creep_ladder.csv / creep_ladder.png by verification/plot_cost_accuracy.py).
+inline void write_creep_ladder(std::ostream& out, const Ladder& l, const std::filesystem::path& dir,
+                               const std::string& source_dir) {
+  out << fmt::format(
+      "\n## {}\n\nReference: {} = {:.6g}. Observed order (in the creep step): "
+      "{:.2f}. `*` marks the default.\n\n| {} | {} | error | wall time |\n"
+      "|---|---|---|---|\n",
+      l.name, l.reference, l.reference_value, l.order(), l.parameter, l.quantity);
+  std::ofstream csv(dir / "creep_ladder.csv");
+  csv << "parameter,value,error,seconds,default,order\n";
+  for (const LadderRung& r : l.rungs) {
+    out << fmt::format("| {:.4g}{} | {:.6g} | {:.3g} | {:.1f} s |\n", r.parameter,
+                       r.is_default ? " *" : "", r.value, r.error, r.seconds);
+    csv << fmt::format("{:.9g},{:.9g},{:.6g},{:.3f},{},{:.4g}\n", r.parameter, r.value, r.error,
+                       r.seconds, r.is_default ? 1 : 0, l.order());
+  }
+  csv.close();
+  const std::string cmd = fmt::format(
+      "/usr/bin/python3 {} {} {} '{}'",
+      (std::filesystem::path(source_dir) / "verification/plot_cost_accuracy.py").string(),
+      (dir / "creep_ladder.csv").string(), (dir / "creep_ladder.png").string(), l.name);
+  if (std::system(cmd.c_str()) == 0) out << "\n![error against run time](creep_ladder.png)\n";
+}
+
 // The error-vs-run-time table of the quasi-static speed-ups (issue 7): fixed and adaptive platen
 // speeds and the implicit elastic start on the default model against the platen-speed ladder's
 // finest run.

@@ -38,16 +38,26 @@ std::string utc_now() {
 
 }  // namespace
 
+std::string report_row(const CaseResult& r) {
+  return fmt::format("| {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {:.3g} | {} | {:.2f} s | {} |\n",
+                     r.id, r.name, r.reference, r.expected, r.measured, r.error, r.tolerance,
+                     r.informational ? "info"
+                     : r.pass()      ? "yes"
+                                     : "**no**",
+                     r.seconds, r.settings);
+}
+
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr,
-                 "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
-                 "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only]\n",
-                 argv[0]);
+    std::fprintf(
+        stderr,
+        "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
+        "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only]\n",
+        argv[0]);
     return 2;
   }
   bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false,
-       grains_only = false, speeds_only = false;
+       grains_only = false, speeds_only = false, creep_only = false;
   for (int i = 4; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--analytic-only") {
@@ -60,6 +70,8 @@ int main(int argc, char** argv) {
       grains_only = true;
     } else if (flag == "--speeds-only") {
       speeds_only = true;
+    } else if (flag == "--creep-only") {
+      creep_only = true;
     } else {
       std::fprintf(stderr, "unknown option '%s'\n", argv[i]);
       return 2;
@@ -74,6 +86,23 @@ int main(int argc, char** argv) {
     write_speed_runs(out, runs);
     std::fprintf(stderr, "report: %s\n", argv[3]);
     return 0;
+  }
+  if (creep_only) {
+    const CreepVerification b4 = b4_sandstone(argv[1], argv[2]);
+    std::ofstream out(argv[3]);
+    out << "# vorodec verification report: Burger's creep (B4) only\n\n"
+        << fmt::format("Generated {} on {} ({} cores) by `vorodec_verify --creep-only`.\n\n",
+                       utc_now(), host_name(), sysconf(_SC_NPROCESSORS_ONLN))
+        << "| case | check | reference | expected | result | error | tolerance | pass | wall time "
+           "| settings |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    int failed = 0;
+    for (const auto& r : b4.rows) {
+      failed += !r.pass();
+      out << report_row(r);
+    }
+    write_creep_ladder(out, b4.ladder, std::filesystem::path(argv[3]).parent_path(), argv[1]);
+    std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, b4.rows.size(), argv[3]);
+    return failed ? 1 : 0;
   }
   std::vector<CaseResult> results;
   for (const auto& c : grains_only ? std::vector<NamedCase>{} : analytic_cases()) {
@@ -125,13 +154,7 @@ int main(int argc, char** argv) {
   int failed = 0;
   for (const auto& r : results) {
     failed += !r.pass();
-    out << fmt::format(
-        "| {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {:.3g} | {} | {:.2f} s | {} |\n", r.id, r.name,
-        r.reference, r.expected, r.measured, r.error, r.tolerance,
-        r.informational ? "info"
-        : r.pass()      ? "yes"
-                        : "**no**",
-        r.seconds, r.settings);
+    out << report_row(r);
   }
   out << fmt::format("\n{} of {} checks pass.\n", results.size() - static_cast<std::size_t>(failed),
                      results.size());

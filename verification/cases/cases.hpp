@@ -134,6 +134,14 @@ struct SpeedRun {
 std::vector<SpeedRun> quasi_static_speed_runs(const std::string& source_dir,
                                               const std::string& binary);
 
+// B4, the hard-sandstone creep study (model runs, about 15 minutes on 2 cores): its rows and the
+// end-of-stage strains against the creep step.
+struct CreepVerification {
+  std::vector<CaseResult> rows;
+  Ladder ladder;
+};
+CreepVerification b4_sandstone(const std::string& source_dir, const std::string& binary);
+
 struct NamedCase {
   std::string id;
   std::function<CaseResult()> run;

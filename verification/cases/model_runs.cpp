@@ -88,9 +88,12 @@ CaseResult energy_balance(const std::string& id, const ModelRun& run, const std:
   const std::size_t last = h.rows.size() - 1;
   const auto column = [&](const char* name) { return h.number(last, name); };
   const double work = column("boundary_work");
-  const double stored = column("strain_energy") + column("kinetic_energy") +
-                        column("damping_energy") + column("friction_energy") +
-                        column("breakage_energy");
+  double stored = column("strain_energy") + column("kinetic_energy") + column("damping_energy") +
+                  column("friction_energy") + column("breakage_energy");
+  if (h.column("viscous_energy") >= 0) {  // Burger's contacts: their dashpots' work
+    stored += column("viscous_energy");
+    e.reference += " + viscous";
+  }
   if (std::isfinite(work) && std::isfinite(stored) && work != 0) {
     e.measured = (work - stored) / work;
     e.error = std::abs(e.measured);
