@@ -134,3 +134,22 @@ TEST(Creep, AMixFractionOfJointsTakesTheSecondLawWholeJointsAtATime) {
   EXPECT_EQ(p.solver->laws()[2]->name(), "mohr_coulomb");
   EXPECT_TRUE(p.solver->viscous());
 }
+
+TEST(Creep, ASpecimenThatGivesWayUnderItsCreepLoadReportsCreepFailureAndItsTime) {
+  // The second creep stage asks for 120 MPa, far above the small specimen's strength.
+  const fs::path out = out_dir("creep_collapse");
+  ASSERT_EQ(run_vorodec("run " + kSmall.string() + " --threads 1 --no-vtk --out " + out.string() +
+                        " --set 'stage[2].deviatoric_stress=120e6'"),
+            3);
+  const std::string json = slurp(out / "summary.json");
+  EXPECT_NE(json.find("creep failure in stage 'creep30'"), std::string::npos) << json;
+  const auto number_after = [&](const std::string& key) {
+    const auto pos = json.rfind("\"" + key + "\": ");
+    return pos == std::string::npos ? std::nan("")
+                                    : std::strtod(json.c_str() + pos + key.size() + 4, nullptr);
+  };
+  const double collapse = number_after("collapse_days"), onset = number_after("failure_onset_days");
+  EXPECT_GT(collapse, 0.0);
+  EXPECT_LT(collapse, 300.0 / 86400.0);
+  EXPECT_LE(onset, collapse);
+}

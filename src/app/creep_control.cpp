@@ -68,10 +68,7 @@ bool CreepControl::after_step(solver::Solver& solver, const measure::SpecimenSta
       report_.min_time_step = std::min(report_.min_time_step, solver.dt());
     }
   }
-  if (collapsed) {
-    report_.collapse = ts;
-    report_.failure_onset = failure_onset();
-  }
+  if (collapsed) collapsed_at(ts);
   return collapsed;
 }
 

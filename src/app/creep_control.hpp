@@ -23,6 +23,11 @@ class CreepControl {
   // After each step of the stage (s: the specimen after it, ts: time in the stage); true once the
   // specimen has collapsed.
   bool after_step(solver::Solver& solver, const measure::SpecimenState& s, double ts);
+  // The specimen collapsed at time ts in the stage some other way (the run's stability checks).
+  void collapsed_at(double ts) {
+    report_.collapse = ts;
+    report_.failure_onset = failure_onset();
+  }
   const CreepStageReport& report() const { return report_; }
 
   template <class Archive>

@@ -60,6 +60,13 @@ void QuasiStaticDriver::advance(Observers& observers) {
   } catch (const solver::InstabilityError& e) {
     outcome_.exit_code = 3;
     outcome_.status = fmt::format("unstable: {}", e.what());
+    if (creep_ && phase_ == Phase::stepping) {  // a specimen that gives way under creep load
+      const double ts = solver_.time() - t0_;
+      creep_->collapsed_at(ts);
+      outcome_.creep.emplace_back(si_, creep_->report());
+      outcome_.status = fmt::format("creep failure in stage '{}' after {:.4g} days, unstable: {}",
+                                    stage().name, ts / 86400.0, e.what());
+    }
     restore_good_state();
     observers.sample(view(), {"unstable", false, true});
     phase_ = Phase::done;

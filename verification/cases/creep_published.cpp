@@ -258,21 +258,22 @@ CreepVerification b4_sandstone(const std::string& source_dir, const std::string&
                     end_strain(t, creep_stages[2])});
     seconds.push_back(r.seconds);
   }
-  out.ladder = {"B4 multi-step creep: end-of-stage strains against the creep step",
-                "creep step factor (x Ckn/Kkn = 8800 s)",
-                "strain at the end of the 220 MPa stage",
-                "the finest run (factor 5e-4), largest relative difference of the three stages",
-                ends.back()[2],
-                {}};
-  for (std::size_t i = 0; i < factors.size(); ++i) {
-    double worst = 0;
-    for (std::size_t s = 0; s < 3; ++s)
-      worst = std::max(worst, std::abs(ends[i][s] - ends.back()[s]) / ends.back()[s]);
-    out.ladder.rungs.push_back({factors[i], ends[i][2], worst, seconds[i], factors[i] == 1e-3});
-  }
+  // The 160 MPa stage creeps with few new cracks: its strain measures the creep step's error.
+  // Near the peak (190, 220 MPa) the stages crack, and where a crack falls depends on the path.
+  out.ladder = {
+      "B4 multi-step creep: strain at the end of the 160 MPa stage against the creep step",
+      "creep step factor (x Ckn/Kkn = 8800 s)",
+      "strain at the end of the 160 MPa stage",
+      "the finest run (factor 5e-4)",
+      ends.back()[0],
+      {}};
+  for (std::size_t i = 0; i < factors.size(); ++i)
+    out.ladder.rungs.push_back({factors[i], ends[i][0],
+                                std::abs(ends[i][0] - ends.back()[0]) / ends.back()[0], seconds[i],
+                                factors[i] == 1e-3});
   const LadderRung& d = out.ladder.rungs[2];
   CaseResult half{"B4",
-                  "end-of-stage strains at the default creep step against half the step",
+                  "160 MPa stage: end strain at the default creep step against half the step",
                   "the same model at creep_step_factor 5e-4",
                   0,
                   d.error,
@@ -281,6 +282,13 @@ CreepVerification b4_sandstone(const std::string& source_dir, const std::string&
                   multi_set,
                   d.seconds};
   rows.push_back(half);
+  for (std::size_t s = 1; s < 3; ++s) {
+    const double diff = std::abs(ends[2][s] - ends.back()[s]) / ends.back()[s];
+    add(fmt::format("{}: end strain at the default creep step against half the step",
+                    creep_stages[s]),
+        "the same model at creep_step_factor 5e-4 (crack-dominated: informational)", 0, diff, 0,
+        multi, multi_set, true);
+  }
   return out;
 }
 
