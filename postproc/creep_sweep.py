@@ -51,6 +51,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("folder")
     p.add_argument("--confining", type=float, default=25e6)
+    p.add_argument("--base-friction", type=float, default=28.0,
+                   help="deg, the base case's friction (models/triaxial_sandstone.toml)")
     p.add_argument("-o", "--output")
     args = p.parse_args()
     fits = {}
@@ -85,7 +87,7 @@ def main():
     fr = sorted((float(k.split("_")[1]), k) for k in fits if k.startswith("friction_"))
     if fr:
         ax = axes[4]
-        xs = [f for f, _ in fr] + [31.0]
+        xs = [f for f, _ in fr] + [args.base_friction]
         keys = [k for _, k in fr] + ["base"]
         order = np.argsort(xs)
         for macro in MACRO:

@@ -51,38 +51,50 @@ StageCurve stage_curve(const Table& h, const std::string& stage) {
 }
 
 // Least-squares macro Burger's model (paper 001, eq. 17) for each retardation time of a log
-// grid: linear in 1/E1, 1/eta1, 1/E2 (3 x 3 normal equations by Cramer's rule).
+// grid: linear in 1/E1, 1/eta1, 1/E2, solved by a QR factorisation (modified Gram-Schmidt) of
+// the three columns, which are nearly parallel where the retardation time is short.
 BurgersFit fit(const StageCurve& c) {
   BurgersFit best{c.stress, 0, 0, 0, 0, std::numeric_limits<double>::infinity()};
+  const std::size_t n = c.t.size();
   for (int k = 0; k <= 600; ++k) {
     const double tau = std::pow(10.0, -5.0 + 6.0 * k / 600.0);  // days
-    double m[3][3] = {}, v[3] = {};
-    for (std::size_t i = 0; i < c.t.size(); ++i) {
-      const double a[3] = {c.stress, c.stress * c.t[i], c.stress * (1 - std::exp(-c.t[i] / tau))};
-      for (int p = 0; p < 3; ++p) {
-        v[p] += a[p] * c.strain[i];
-        for (int q = 0; q < 3; ++q) m[p][q] += a[p] * a[q];
-      }
+    std::vector<double> q[3];
+    for (std::size_t i = 0; i < n; ++i) {
+      q[0].push_back(c.stress);
+      q[1].push_back(c.stress * c.t[i]);
+      q[2].push_back(c.stress * (1 - std::exp(-c.t[i] / tau)));
     }
-    const auto det = [](const double x[3][3]) {
-      return x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) -
-             x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
-             x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
-    };
-    const double d = det(m);
-    if (d == 0) continue;
+    double r[3][3] = {};
+    bool singular = false;
+    for (int j = 0; j < 3; ++j) {
+      for (int p = 0; p < j; ++p) {
+        double dot = 0;
+        for (std::size_t i = 0; i < n; ++i) dot += q[p][i] * q[j][i];
+        r[p][j] = dot;
+        for (std::size_t i = 0; i < n; ++i) q[j][i] -= dot * q[p][i];
+      }
+      double norm = 0;
+      for (const double x : q[j]) norm += x * x;
+      r[j][j] = std::sqrt(norm);
+      if (!(r[j][j] > 0)) {
+        singular = true;
+        break;
+      }
+      for (double& x : q[j]) x /= r[j][j];
+    }
+    if (singular) continue;
     double coef[3];
-    for (int col = 0; col < 3; ++col) {
-      double mc[3][3];
-      for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q) mc[p][q] = q == col ? v[p] : m[p][q];
-      coef[col] = det(mc) / d;
+    for (int j = 2; j >= 0; --j) {
+      double v = 0;
+      for (std::size_t i = 0; i < n; ++i) v += q[j][i] * c.strain[i];
+      for (int p = j + 1; p < 3; ++p) v -= r[j][p] * coef[p];
+      coef[j] = v / r[j][j];
     }
     if (coef[0] <= 0 || coef[1] <= 0 || coef[2] <= 0) continue;
     const BurgersFit f{c.stress, 1 / coef[0], 1 / coef[1], 1 / coef[2], tau / coef[2]};
     double rms = 0;
-    for (std::size_t i = 0; i < c.t.size(); ++i) rms += std::pow(f.strain(c.t[i]) - c.strain[i], 2);
-    rms = std::sqrt(rms / static_cast<double>(c.t.size()));
+    for (std::size_t i = 0; i < n; ++i) rms += std::pow(f.strain(c.t[i]) - c.strain[i], 2);
+    rms = std::sqrt(rms / static_cast<double>(n));
     if (rms < best.rms) best = {f.stress, f.e1, f.eta1, f.e2, f.eta2, rms};
   }
   return best;
