@@ -34,7 +34,7 @@ DAY = 86400.0
 def creep_stages(data, min_span):
     """(label, row indices) of each stage spanning more than min_span seconds."""
     stages, start = [], 0
-    labels = data["stage"]
+    labels = [label.split(":")[0] for label in data["stage"]]  # with its :start and :end rows
     for i in range(1, len(labels) + 1):
         if i == len(labels) or labels[i] != labels[start]:
             rows = np.arange(start, i)
