@@ -180,9 +180,11 @@ class LawGroupOf final : public LawGroup {
   void step_range(StepContext& ctx, std::size_t begin, std::size_t end) {
     const int chunks = ctx.chunks;
     double slip = 0.0, breakage = 0.0;
-    if constexpr (is_viscous) dashpot_parts_.assign(static_cast<std::size_t>(chunks), 0.0);
-      // One part per thread; a thread the runtime did not grant (or a group too small to be worth
-      // a parallel region) leaves its part to the others.
+    if constexpr (is_viscous) {
+      dashpot_parts_.assign(static_cast<std::size_t>(chunks), 0.0);
+    }
+    // One part per thread; a thread the runtime did not grant (or a group too small to be worth
+    // a parallel region) leaves its part to the others.
 #pragma omp parallel num_threads(chunks) if (end - begin >= 2048) reduction(+ : slip, breakage)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
       // Private to the thread: shared ones are read through the region's data block, again after
@@ -309,15 +311,9 @@ class LawGroupOf final : public LawGroup {
       // which would then load and keep them (on the stack) for every contact.
       const double fn0 = c.fn, fs0 = c.fs;
       const double work = -0.5 * ((fn0 + r.fn) * k.du_n + (fs0 + r.fs) * k.du_s);
-      dissipated = work -
-                   (energy(props, state, r.fn, r.fs) -
-                    [&] {
-                      if constexpr (is_viscous)
-                        return energy_before;
-                      else
-                        return Law::strain_energy(props, fn0, fs0);
-                    }()) -
-                   viscous_work;
+      // A viscous law's spring energy depends on its state, so it was taken before the step.
+      const double e0 = is_viscous ? energy_before : energy(props, state, fn0, fs0);
+      dissipated = work - (energy(props, state, r.fn, r.fs) - e0) - viscous_work;
       dashpots += viscous_work;
     }
     c.gap = f.gap;
