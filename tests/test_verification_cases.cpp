@@ -60,3 +60,11 @@ TEST(Verification, A10BurgersCreepIsSecondOrderFromTheConsistentStartFirstOrderF
 TEST(Verification, G1MineralAreaFractionsMatchTheRequestWithinOneGrain) {
   for (const auto& r : g1_mineral_fractions(0.01, 1.52e-3)) EXPECT_TRUE(passes(r));
 }
+
+TEST(Verification, A11CorrodingContactFailsAtTheQuadratureTimeBothLayers) {
+  for (const bool bonded_length : {false, true})
+    for (const double s : {0.5, 0.7, 0.9}) {
+      const CaseResult r = a11_stress_corrosion(bonded_length, s, 4);
+      EXPECT_TRUE(passes(r)) << r.name << " s " << s << ": " << r.measured << " vs " << r.expected;
+    }
+}

@@ -22,6 +22,8 @@ struct RunView {
   double platen_velocity;  // m/s, top platen, compression +
   int stage;               // index of the current stage
   bool creep_stages;       // the load path has creep stages (time is also told in days)
+  bool corrosion_stages;   // the load path has corrosion stages (their clock is told too)
+  double corrosion_time;   // s, the corrosion clock of the current or last corrosion stage
 };
 
 // When to sample: a history row, an output frame (VTK and rose.csv), under this label.
@@ -55,6 +57,7 @@ struct DriverOutcome {
   std::optional<ImplicitStart> implicit_start;
   // Creep stages: (stage index, what it did), in stage order.
   std::vector<std::pair<std::size_t, CreepStageReport>> creep;
+  std::vector<std::pair<std::size_t, CorrosionStageReport>> corrosion;
 };
 
 class Driver {

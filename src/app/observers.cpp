@@ -29,6 +29,7 @@ class HistoryObserver final : public Observer {
         grains_(!v.specimen.block_grain.empty()),
         viscous_(v.solver.viscous()),
         creep_(v.creep_stages),
+        corrosion_(v.corrosion_stages),
         curve_(curve) {
     csv_ = open_csv(out / "history.csv", header(), resume);
     if (resume)
@@ -69,6 +70,7 @@ class HistoryObserver final : public Observer {
     // Viscous contacts (Burger's): their dashpots' work, J/m; creep runs: time in days.
     if (viscous_) h.emplace_back("viscous_energy");
     if (creep_) h.emplace_back("time_days");
+    if (corrosion_) h.emplace_back("corrosion_time");  // s, the corrosion stages' clock
     // Deformable specimens: the zones' area-weighted mean stress (compression positive, Pa).
     if (zoned_) h.insert(h.end(), {"zone_stress_xx", "zone_stress_yy", "zone_stress_xy"});
     if (grains_) {
@@ -112,6 +114,7 @@ class HistoryObserver final : public Observer {
     std::vector<double> full(std::begin(row), std::end(row));
     if (viscous_) full.push_back(e.viscous);
     if (creep_) full.push_back(solver.time() / 86400.0);
+    if (corrosion_) full.push_back(v.corrosion_time);
     if (zoned_) {
       const model::ZoneStress m = model::mean_stress(v.model, Group::specimen);
       full.insert(full.end(), {-m.xx, -m.yy, -m.xy});
@@ -132,7 +135,7 @@ class HistoryObserver final : public Observer {
   }
 
   const DamageOutput& damage_;
-  bool zoned_, grains_, viscous_, creep_;
+  bool zoned_, grains_, viscous_, creep_, corrosion_;
   Curve& curve_;
   std::unique_ptr<io::CsvWriter> csv_;
 };

@@ -14,8 +14,8 @@ namespace vorodec::app {
 // A member added to the driver is either state a checkpoint carries (save and load it in
 // QuasiStaticDriver::state) or comes again from the model file or the loaded state (say so there);
 // then update these sizes.
-static_assert(sizeof(QuasiStaticDriver) == 776, "QuasiStaticDriver changed: see state()");
-static_assert(sizeof(DriverOutcome) == 240, "DriverOutcome changed: see state()");
+static_assert(sizeof(QuasiStaticDriver) == 1024, "QuasiStaticDriver changed: see state()");
+static_assert(sizeof(DriverOutcome) == 264, "DriverOutcome changed: see state()");
 static_assert(sizeof(loading::StageControl) == 104, "StageControl changed: see its serialize()");
 
 QuasiStaticDriver::QuasiStaticDriver(const io::ModelConfig& cfg, model::Model& model,
@@ -39,7 +39,13 @@ RunView QuasiStaticDriver::view() const {
   const auto& stages = cfg_.load_path.stages;
   const bool creep = std::any_of(stages.begin(), stages.end(),
                                  [](const loading::Stage& s) { return s.creep.enabled; });
-  return {model_, solver_, specimen_, state_, v_, static_cast<int>(si_), creep};
+  const bool corrosion = std::any_of(stages.begin(), stages.end(), [](const loading::Stage& s) {
+    return s.corrosion.enabled;
+  });
+  const double clock = corrosion_                  ? corrosion_->time()
+                       : outcome_.corrosion.empty() ? 0.0
+                                                    : outcome_.corrosion.back().second.time;
+  return {model_, solver_, specimen_, state_, v_, static_cast<int>(si_), creep, corrosion, clock};
 }
 
 void QuasiStaticDriver::advance(Observers& observers) {
@@ -67,6 +73,16 @@ void QuasiStaticDriver::advance(Observers& observers) {
       outcome_.status = fmt::format("creep failure in stage '{}' after {:.4g} days, unstable: {}",
                                     stage().name, ts / 86400.0, e.what());
     }
+    if (corrosion_ && phase_ == Phase::stepping) {  // static fatigue: the collapse went unstable
+      CorrosionStageReport r = corrosion_->report();
+      r.failure_time = r.time;
+      outcome_.corrosion.emplace_back(si_, r);
+      outcome_.status =
+          fmt::format("static-fatigue failure in stage '{}' after {:.4g} s of corrosion, "
+                      "unstable: {}",
+                      stage().name, r.time, e.what());
+      solver_.set_crack_clock(std::numeric_limits<double>::quiet_NaN());
+    }
     restore_good_state();
     observers.sample(view(), {"unstable", false, true});
     phase_ = Phase::done;
@@ -79,6 +95,11 @@ void QuasiStaticDriver::start_stage(Observers& observers) {
   stage_fraction_ = 0;
   control_.emplace(st, v_, state_.axial_stress, state_.axial_strain);
   creep_.reset();
+  corrosion_.reset();
+  if (st.corrosion.enabled) {
+    corrosion_.emplace(st, *cfg_.corrosion, model_, solver_, specimen_.block_grain);
+    solver_.set_crack_clock(0.0);
+  }
   if (st.creep.enabled)
     creep_.emplace(st, solver_);
   else if (solver_.scaling_time_step() != cfg_.solver.time_step)  // after a creep stage
@@ -141,6 +162,10 @@ void QuasiStaticDriver::step(Observers& observers) {
     phase_ = Phase::stage_end;
     return;
   }
+  if (corrosion_ && corrosion_step(observers)) {
+    phase_ = Phase::stage_end;
+    return;
+  }
   if (outcome == loading::StageOutcome::stalled) {
     outcome_.stalled[si_] = true;
     resume_at_ = st.block_end;
@@ -148,10 +173,42 @@ void QuasiStaticDriver::step(Observers& observers) {
   if (outcome != loading::StageOutcome::running) phase_ = Phase::stage_end;
 }
 
+bool QuasiStaticDriver::corrosion_step(Observers& observers) {
+  const loading::Stage& st = stage();
+  switch (corrosion_->after_step(solver_, model_, state_)) {
+    case CorrosionControl::Next::step:
+      return false;
+    case CorrosionControl::Next::corroded:
+      observers.sample(view(), {st.name + ":equilibrium", true, false});
+      return false;
+    case CorrosionControl::Next::collapsed:
+      outcome_.status = fmt::format(
+          "static-fatigue failure in stage '{}' after {:.4g} s ({:.4g} days) of corrosion: no "
+          "equilibrium within {} steps",
+          st.name, corrosion_->report().failure_time, corrosion_->report().failure_time / 86400.0,
+          st.corrosion.max_equilibrium_steps);
+      stop_ = true;
+      return true;
+    case CorrosionControl::Next::no_corrosion:
+      outcome_.status = fmt::format(
+          "stage '{}': no bond corrodes at this stress (none above its activation): no "
+          "static-fatigue failure",
+          st.name);
+      return true;
+    case CorrosionControl::Next::time_up:
+      return true;
+  }
+  return false;
+}
+
 void QuasiStaticDriver::end_stage(Observers& observers) {
   const loading::Stage& st = stage();
   const std::string label = st.name + (outcome_.stalled[si_] ? ":stalled" : ":end");
   if (creep_) outcome_.creep.emplace_back(si_, creep_->report());
+  if (corrosion_) {
+    outcome_.corrosion.emplace_back(si_, corrosion_->report());
+    solver_.set_crack_clock(std::numeric_limits<double>::quiet_NaN());
+  }
   observers.sample(view(), {label, true, true});
   std::size_t next = si_ + 1;
   if (resume_at_ >= 0 && st.phase == loading::CyclePhase::unloading) {
@@ -196,6 +253,11 @@ ProgressReport QuasiStaticDriver::progress() const {
   if (st.creep.enabled)
     r.clock = fmt::format("day {:.3f} of {:.3f}", (solver_.time() - t0_) / 86400.0,
                           st.end.duration / 86400.0);
+  if (corrosion_) {
+    const CorrosionStageReport& c = corrosion_->report();
+    r.clock = fmt::format("corrosion {:.4g} s = {:.4g} days = {:.3g} years, step {}", c.time,
+                          c.time / 86400.0, c.time / (365.25 * 86400.0), c.corrosion_steps);
+  }
   if (std::isnan(st.end.post_peak_fraction)) {
     r.fraction = stage_fraction_;
     return r;
@@ -232,6 +294,23 @@ void QuasiStaticDriver::state(Archive& ar) {
     if (creep) creep_.emplace(stage());  // its state follows
   }
   if (creep) ar(*creep_);
+  bool corrosion = corrosion_.has_value();
+  ar(corrosion);
+  if constexpr (Archive::is_loading::value) {
+    corrosion_.reset();
+    if (corrosion) corrosion_.emplace(stage(), *cfg_.corrosion);  // its state follows
+  }
+  if (corrosion) ar(*corrosion_);
+  std::vector<std::size_t> corrosion_stages;
+  std::vector<CorrosionStageReport> corrosion_reports;
+  for (const auto& [i, r] : outcome_.corrosion) {
+    corrosion_stages.push_back(i);
+    corrosion_reports.push_back(r);
+  }
+  ar(pod(corrosion_stages), pod(corrosion_reports));
+  outcome_.corrosion.clear();
+  for (std::size_t k = 0; k < corrosion_stages.size(); ++k)
+    outcome_.corrosion.emplace_back(corrosion_stages[k], corrosion_reports[k]);
   std::vector<std::size_t> creep_stages;
   std::vector<CreepStageReport> creep_reports;
   for (const auto& [i, r] : outcome_.creep) {

@@ -4,6 +4,7 @@
 // lateral boundary; an implicit elastic start where a stage asks for one.
 #include <optional>
 
+#include "corrosion_control.hpp"
 #include "creep_control.hpp"
 #include "driver.hpp"
 #include "vorodec/io/model_file.hpp"
@@ -36,6 +37,7 @@ class QuasiStaticDriver final : public Driver {
   void start_stage(Observers& observers);
   void step(Observers& observers);
   void end_stage(Observers& observers);
+  bool corrosion_step(Observers& observers);  // after a step of a corrosion stage: it ended
   void keep_good_state();
   void restore_good_state();
   const loading::Stage& stage() const { return cfg_.load_path.stages[si_]; }
@@ -53,6 +55,7 @@ class QuasiStaticDriver final : public Driver {
   double t0_ = 0;       // s, its start time
   std::optional<loading::StageControl> control_;
   std::optional<CreepControl> creep_;  // creep stages
+  std::optional<CorrosionControl> corrosion_;  // corrosion stages
   measure::SpecimenState state_;
   double v_ = 0;               // m/s, top platen
   double stage_fraction_ = 0;  // largest progress fraction of the stage so far

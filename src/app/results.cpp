@@ -94,6 +94,29 @@ std::string creep_json(const io::ModelConfig& cfg, const RunSummary& s) {
   return fmt::format(",\n  \"creep_stages\": [{}\n  ]", rows);
 }
 
+// Corrosion stages: the corrosion clock, its steps and the failure time (null: no failure).
+std::string corrosion_json(const io::ModelConfig& cfg, const RunSummary& s) {
+  if (s.corrosion.empty()) return "";
+  std::string rows;
+  for (const auto& [i, r] : s.corrosion) {
+    const loading::Stage& st = cfg.load_path.stages[i];
+    rows += fmt::format(
+        "{}\n    {{\"stage\": \"{}\", \"driving_stress_ratio\": {:.6g}, "
+        "\"target_stress_Pa\": {:.8g}, \"corrosion_time_s\": {:.6g}, \"failure_time_s\": {}, "
+        "\"corrosion_steps\": {}, \"mechanical_steps\": {}, "
+        "\"mechanical_steps_per_corrosion_step\": {:.6g}, \"corrosion_step_s\": [{:.6g}, "
+        "{:.6g}], \"creep_strain\": {:.6g}, \"broken_transgranular\": {}, "
+        "\"broken_intergranular\": {}, \"corroding_bonds\": {}, \"corroding_contacts\": {}}}",
+        rows.empty() ? "" : ",", st.name, st.corrosion.driving_stress_ratio, st.target_stress,
+        r.time, std::isnan(r.failure_time) ? std::string("null") : fmt::format("{:.6g}", r.failure_time),
+        r.corrosion_steps, r.mechanical_steps,
+        r.corrosion_steps ? double(r.mechanical_steps) / double(r.corrosion_steps) : 0.0,
+        r.min_step, r.max_step, r.last_strain - r.first_strain, r.broken_transgranular,
+        r.broken_intergranular, r.active_bonds, r.active_contacts);
+  }
+  return fmt::format(",\n  \"corrosion_stages\": [{}\n  ]", rows);
+}
+
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,
                    const RunSummary& s, std::size_t initial_contacts, double dt, std::size_t broken,
                    const std::string& grains) {
@@ -115,7 +138,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
           "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
           "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n{}  \"failure_rate\": {:.6g},\n"
           "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
-          "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}{}\n}}\n",
+          "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}{}{}\n}}\n",
           cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
           s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
           grains, initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
@@ -124,7 +147,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
                                 "\"yy\": {:.8g}, \"xy\": {:.8g}}}",
                                 s.zones, s.zone_stress_xx, s.zone_stress_yy, s.zone_stress_xy)
                   : std::string(),
-          implicit_json(s.implicit_start), creep_json(cfg, s)));
+          implicit_json(s.implicit_start), creep_json(cfg, s), corrosion_json(cfg, s)));
 }
 
 }  // namespace
@@ -140,6 +163,7 @@ RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve 
   summary.status = outcome.status;
   summary.implicit_start = outcome.implicit_start;
   summary.creep = outcome.creep;
+  summary.corrosion = outcome.corrosion;
   summary.blocks = model.blocks.size();
   const double peak = outcome.peak, trough = outcome.trough;
   // A pulled specimen (direct tension): its elastic constants come from the tensile branch.

@@ -423,6 +423,98 @@ void read_creep(TomlSection& sec, loading::Stage& st, const ModelConfig& cfg) {
                          cfg.joints.name));
 }
 
+// control = "corrosion": the servo holds sigma1 = sigma3 + rs (sf - sigma3) while the corrosion
+// layers of [corrosion] run (loading::CorrosionSettings), until collapse or the duration.
+void read_corrosion_stage(TomlSection& sec, loading::Stage& st, const ModelConfig& cfg) {
+  if (!cfg.corrosion)
+    sec.fail("control", "a corrosion stage needs a [corrosion] table (the layers' constants)");
+  st.control = loading::Control::axial_stress;
+  loading::CorrosionSettings& c = st.corrosion;
+  c.enabled = true;
+  c.driving_stress_ratio = sec.positive("driving_stress_ratio", laws::required);
+  if (c.driving_stress_ratio >= 1)
+    sec.fail("driving_stress_ratio",
+             fmt::format("must be in (0, 1) (got {})", c.driving_stress_ratio));
+  const double s3 = cfg.load_path.confining_stress;
+  c.peak_stress = sec.positive("peak_stress", laws::required);
+  if (c.peak_stress <= s3)
+    sec.fail("peak_stress", fmt::format("must exceed the confining stress {} Pa (got {})", s3,
+                                        c.peak_stress));
+  st.target_stress = s3 + c.driving_stress_ratio * (c.peak_stress - s3);
+  st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
+  c.steps_per_failure = sec.number("steps_per_failure", c.steps_per_failure);
+  if (!(c.steps_per_failure >= 1))
+    sec.fail("steps_per_failure", fmt::format("n_c must be >= 1 (got {})", c.steps_per_failure));
+  const std::string held = "held";
+  const std::string ttf = sec.string("time_to_failure", &held);
+  if (ttf != "held" && ttf != "frozen")
+    sec.fail("time_to_failure", fmt::format("must be \"held\" (forces held, integrated) or "
+                                            "\"frozen\" (the rate frozen, POT07) (got \"{}\")",
+                                            ttf));
+  c.frozen_rate = ttf == "frozen";
+  c.equilibrium_ratio = sec.positive("equilibrium_ratio", c.equilibrium_ratio);
+  c.check_interval = sec.integer("check_interval", c.check_interval, 1);
+  c.max_equilibrium_steps = sec.integer("max_equilibrium_steps", c.max_equilibrium_steps, 1);
+  int given = 0;
+  for (const auto& [key, unit] : {std::pair{"duration", 1.0}, std::pair{"duration_days", 86400.0},
+                                  std::pair{"duration_years", 365.25 * 86400.0}})
+    if (sec.has(key)) {
+      if (++given > 1)
+        sec.fail(key, "give at most one of duration (s), duration_days and duration_years");
+      c.max_time = unit * sec.positive(key, laws::required);
+    }
+  if (sec.has("end_time")) sec.fail("end_time", "a corrosion stage ends by failure or duration");
+  if (cfg.deformable.enabled)
+    sec.fail("control", "corrosion stages need rigid blocks ([blocks] deformable = false)");
+}
+
+// [corrosion]: the constants of the two layers (PHYSICS 13; paper 000 Table 4 for LdB granite).
+void read_corrosion(TomlSection sec, TomlSection& top, ModelConfig& cfg) {
+  if (!cfg.grains)
+    top.fail("corrosion", "stress corrosion needs a grain-based specimen ([specimen] kind = "
+                          "\"grains\"): its layers act inside grains and on grain boundaries");
+  CorrosionConfig c;
+  c.rate.beta_up = sec.positive("beta_up", laws::required);
+  c.rate.beta_low = sec.positive("beta_low", laws::required);
+  c.rate.r_mid = sec.positive("r_mid", laws::required);
+  c.rate.k_v = sec.number("k_v", laws::required);
+  if (c.rate.k_v >= 0)
+    sec.fail("k_v", fmt::format("must be negative: the rate rises with the driving-stress ratio "
+                                "(got {})",
+                                c.rate.k_v));
+  c.beta3_per_beta1 = sec.positive("beta3_per_beta1", 1.0);
+  c.transgranular = sec.boolean("transgranular", true);
+  c.intergranular = sec.boolean("intergranular", true);
+  if (!c.transgranular && !c.intergranular)
+    sec.fail("intergranular", "at least one of transgranular and intergranular must be on");
+  const GrainConfig& g = *cfg.grains;
+  const auto bonded_law = [&](const LawChoice& law, const char* key) {
+    if (law.name != "mohr_coulomb")
+      sec.fail(key, fmt::format("corrodes bonded mohr_coulomb joints; these have law '{}'",
+                                law.name));
+  };
+  if (c.transgranular) {
+    bonded_law(g.transgranular, "transgranular");
+    for (const auto& in : g.inside)
+      if (in) bonded_law(*in, "transgranular");
+    c.bonded.beta2 = sec.positive("beta2", laws::required);
+    c.bonded.activation_stress = sec.non_negative("activation_stress", laws::required);
+    c.bonded.xi_a = sec.positive("min_length_ratio", 0.01);
+    if (c.bonded.xi_a >= 1) sec.fail("min_length_ratio", "must be < 1");
+  }
+  if (c.intergranular) {
+    bonded_law(g.intergranular, "intergranular");
+    for (const auto& p : g.pairs) bonded_law(p.law, "intergranular");
+    c.degradation.beta4 = sec.positive("beta4", laws::required);
+    c.degradation.m_s = sec.non_negative("activation_level", laws::required);
+    if (c.degradation.m_s >= 1) sec.fail("activation_level", "must be < 1");
+    c.degradation.lambda_a = sec.positive("min_strength_factor", 0.01);
+    if (c.degradation.lambda_a >= 1) sec.fail("min_strength_factor", "must be < 1");
+  }
+  sec.finish();
+  cfg.corrosion = c;
+}
+
 void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>& stages,
                  ModelConfig& cfg) {
   loading::Stage st;
@@ -449,6 +541,8 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
   } else if (control == "creep") {
     read_creep(sec, st, cfg);
+  } else if (control == "corrosion") {
+    read_corrosion_stage(sec, st, cfg);
   } else if (control == "stress_rate") {
     st.control = loading::Control::stress_rate;
     st.stress_rate = sec.number("stress_rate", laws::required);
@@ -456,7 +550,7 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
   } else {
     sec.fail("control", fmt::format("must be \"platen_velocity\", \"axial_stress\", "
-                                    "\"stress_rate\", \"creep\" or \"cyclic\" (got \"{}\")",
+                                    "\"stress_rate\", \"creep\", \"corrosion\" or \"cyclic\" (got \"{}\")",
                                     control));
   }
   st.ramp_time = sec.non_negative("ramp_time", 0.0);
@@ -467,7 +561,8 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     if (!(st.end.post_peak_fraction > 0 && st.end.post_peak_fraction < 1))
       sec.fail("end_post_peak_fraction", "must be between 0 and 1");
   }
-  if (st.control != loading::Control::axial_stress || !st.creep.enabled)
+  if (st.control != loading::Control::axial_stress ||
+      !(st.creep.enabled || st.corrosion.enabled))
     st.end.duration = sec.has("end_time") ? sec.positive("end_time", nan) : nan;
   st.end.axial_stress = sec.has("end_axial_stress") ? sec.number("end_axial_stress", nan) : nan;
   if (st.control == loading::Control::stress_rate && std::isnan(st.end.axial_stress) &&
@@ -479,7 +574,9 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     sec.fail("end_axial_strain",
              "a stage needs an end condition: end_axial_strain, end_post_peak_fraction, "
              "end_axial_stress or end_time");
-  if (st.control == loading::Control::axial_stress) st.end.stress = st.target_stress;
+  // A corrosion stage holds its stress until failure: it does not end when the target is held.
+  if (st.control == loading::Control::axial_stress && !st.corrosion.enabled)
+    st.end.stress = st.target_stress;
   read_implicit_start(sec, st, index == 0 && stages.empty(), cfg);
   sec.finish();
   stages.push_back(st);
@@ -799,6 +896,7 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     cfg.load_path.confining_stress = l.non_negative("confining_stress", 0.0);
     l.finish();
   }
+  if (top.has("corrosion")) read_corrosion(top.sub("corrosion"), top, cfg);
   const toml::node* stages = top.node("stage");
   if (!stages || !stages->is_array_of_tables())
     top.fail("stage", "at least one [[stage]] table is required");

@@ -217,7 +217,7 @@ void Solver::contact_forces() {
                         chunks_,
                         &cracks_per_chunk_,
                         dt_,
-                        time_,
+                        std::isnan(crack_clock_) ? time_ : crack_clock_,
                         {},
                         &model_.zoning};
   auto& z = model_.zoning;
@@ -450,6 +450,45 @@ void Solver::check_stability() const {
         "kinetic energy {:.4g} J/m exceeds the work supplied {:.4g} J/m at step {} (t = {:.6g} s):"
         " the explicit integration is unstable; lower solver.safety_factor",
         ke, supplied, steps_, time_));
+}
+
+}  // namespace vorodec::solver
+
+namespace vorodec::solver {
+
+namespace {
+std::pair<std::size_t, std::size_t> group_of(const std::vector<std::size_t>& begin,
+                                              const model::Contact& c, std::size_t i) {
+  return {c.law, i - begin[c.law]};
+}
+}  // namespace
+
+bool Solver::bond(std::size_t i, laws::BondView& out) const {
+  const auto [g, local] = group_of(law_begin_, model_.contacts[i], i);
+  return laws_[g]->bond(local, out);
+}
+
+void Solver::set_bond(std::size_t i, const laws::BondView& b, double fn, double fs) {
+  model::Contact& c = model_.contacts[i];
+  const auto [g, local] = group_of(law_begin_, c, i);
+  const double before = laws_[g]->strain_energy(local, c.fn, c.fs);
+  laws_[g]->set_bond(local, b, c.gap, fn, fs);
+  c.fn = fn;
+  c.fs = fs;
+  energy_.corrosion += before - laws_[g]->strain_energy(local, fn, fs);
+}
+
+void Solver::break_bond(std::size_t i, laws::ContactEvent type, double time) {
+  model::Contact& c = model_.contacts[i];
+  const auto [g, local] = group_of(law_begin_, c, i);
+  laws::BondView b{};
+  laws_[g]->bond(local, b);
+  b.broken = true;
+  laws_[g]->set_bond(local, b, c.gap, c.fn, c.fs);
+  c.state = type == laws::ContactEvent::tensile_failure ? model::ContactState::tensile_failed
+                                                        : model::ContactState::shear_failed;
+  const model::ContactFrame f = model::contact_frame(model_.blocks.corners(), c);
+  cracks_.push_back({time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, type});
 }
 
 }  // namespace vorodec::solver

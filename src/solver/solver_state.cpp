@@ -6,7 +6,7 @@ namespace vorodec::solver {
 
 // A member added to Solver is either state a checkpoint carries (save and load it in Solver::state)
 // or comes again from the model file or the loaded state (say so there); then update these sizes.
-static_assert(sizeof(Solver) == 768, "Solver changed: see Solver::state");
+static_assert(sizeof(Solver) == 784, "Solver changed: see Solver::state");
 
 template <class Archive>
 void Solver::state(Archive& ar) {
@@ -16,7 +16,8 @@ void Solver::state(Archive& ar) {
      pod(gather_begin_), pod(gather_), pod(sums_), pod(x_detect_), pod(y_detect_), pod(t_detect_),
      pod(cracks_), bytes(energy_));
   ar(dt_, critical_dt_, time_, fixed_step_warned_, steps_, last_detection_, initial_bonded_,
-     detections_, settings_.time_step);  // creep stages change the density-scaling step
+     detections_, settings_.time_step,  // creep stages change the density-scaling step
+     crack_clock_);
   std::uint64_t next_id = detector_.next_id();
   ar(next_id);
   detector_.set_next_id(next_id);

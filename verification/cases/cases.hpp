@@ -38,6 +38,14 @@ CaseResult a8_local_damping();
 // One Burger's contact held at a constant force (fast: part of the unit tests too).
 CaseResult a10_burgers_creep(bool shear);
 
+// One stress-corroding contact at stress ratio s (sigma / sigma_t0), forces held, stepped by the
+// corrosion driver's clock with n_c (fast: part of the unit tests too): its time to failure (s)
+// against the quadrature; infinity where it never fails.
+double a11_quadrature(bool bonded_length, double s);
+// frozen: POT07's estimate and step, the rate frozen at the step's start.
+double a11_stepped(bool bonded_length, double s, double n_c, bool frozen);
+CaseResult a11_stress_corrosion(bool bonded_length, double s, double n_c);
+
 // Deformable blocks (fast: part of the unit tests too).
 CaseResult a13_patch_test();
 // A deformable column on a rigid platen under its own weight, and between platens under uniaxial

@@ -71,6 +71,19 @@ struct CreepStageReport {
   double collapse = std::numeric_limits<double>::quiet_NaN();       // s in the stage
 };
 
+// What a corrosion stage did (summary.json).
+struct CorrosionStageReport {
+  double time = 0;  // s, corrosion time reached
+  // s, corrosion time of the last equilibrium before the specimen collapsed (NaN: it did not)
+  double failure_time = std::numeric_limits<double>::quiet_NaN();
+  double first_strain = 0, last_strain = 0;  // -, axial strain at the first and last equilibrium
+  double min_step = 0, max_step = 0;         // s, the corrosion step's range
+  long corrosion_steps = 0;
+  long mechanical_steps = 0;  // solver steps in the stage (equilibria included)
+  long broken_transgranular = 0, broken_intergranular = 0;  // bonds broken by corrosion
+  long active_bonds = 0, active_contacts = 0;  // corroding at the last corrosion step
+};
+
 struct RunSummary {
   // 0 finished, 3 stopped unstable, 4 step limit of the model file reached, kStoppedForResume
   int exit_code = 0;
@@ -89,6 +102,7 @@ struct RunSummary {
   std::optional<ImplicitStart> implicit_start;
   // Creep stages: (stage index, what it did), in stage order.
   std::vector<std::pair<std::size_t, CreepStageReport>> creep;
+  std::vector<std::pair<std::size_t, CorrosionStageReport>> corrosion;
 };
 
 // Runs the load path. `overrides` are those cfg was read with (a checkpoint records them).

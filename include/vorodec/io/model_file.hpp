@@ -10,6 +10,7 @@
 #include "vorodec/geometry/grains.hpp"
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/laws/contact_law.hpp"
+#include "vorodec/laws/stress_corrosion.hpp"
 #include "vorodec/loading/load_path.hpp"
 #include "vorodec/solver/solver.hpp"
 
@@ -64,6 +65,16 @@ struct GrainConfig {
   std::vector<Pair> pairs;
 };
 
+// [corrosion]: the stress-corrosion layers of a grain-based specimen (PHYSICS 13; paper 000).
+struct CorrosionConfig {
+  laws::DrivingRate rate;         // beta1(rs): m/s for bonded lengths
+  double beta3_per_beta1 = 1.0;   // 1/m: beta3 (1/s, strength factors) = this x beta1
+  bool transgranular = true;      // bonded-length reduction inside grains
+  bool intergranular = true;      // strength degradation on grain boundaries
+  laws::BondedLength bonded;
+  laws::StrengthDegradation degradation;
+};
+
 struct OutputSettings {
   long history_steps = 200;       // steps between history rows
   long vtk_steps = 20000;         // steps between VTK frames (also at stage ends)
@@ -104,6 +115,7 @@ struct ModelConfig {
   };
   std::optional<JointMix> joint_mix;
   std::optional<GrainConfig> grains;  // grain-based specimen
+  std::optional<CorrosionConfig> corrosion;
   LawChoice platens;                  // platen to specimen
   bool platens_bonded = false;        // glued to the specimen (direct tension)
   solver::SolverSettings solver;

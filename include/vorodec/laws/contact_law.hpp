@@ -100,6 +100,15 @@ struct NewContact {
   double spring_origin;
 };
 
+// A bonded contact's springs and strength as the stress-corrosion layers (stress_corrosion.hpp)
+// read and degrade them.
+struct BondView {
+  double kn, ks;                          // N/m
+  double tension_force, cohesion_force;   // N
+  double tan_phi;
+  bool broken;
+};
+
 class LawGroup {
  public:
   virtual ~LawGroup() = default;
@@ -134,6 +143,11 @@ class LawGroup {
   // Sampled properties of local contact i, named by property_names() (for reports and files).
   virtual std::vector<double> properties(std::size_t i) const = 0;
   virtual std::span<const std::string_view> property_names() const = 0;
+  // Stress corrosion: local contact i's bond (false: the law has none the layers can degrade).
+  virtual bool bond(std::size_t i, BondView& out) const = 0;
+  // Gives local contact i the springs and strength of `b` and, at its current gap, the forces
+  // (fn, fs) N; or breaks it (tension and cohesion lost) with b.broken.
+  virtual void set_bond(std::size_t i, const BondView& b, double gap, double fn, double fs) = 0;
   // Checkpoints: the per-contact properties and state (the parameters come from the model file).
   virtual void save(checkpoint::OutArchive& ar) const = 0;
   virtual void load(checkpoint::InArchive& ar) = 0;

@@ -52,6 +52,18 @@ class LawGroupOf final : public LawGroup {
     return 0.0;
   }
 
+  bool bond(std::size_t i, BondView& out) const override {
+    if constexpr (requires { Law::bond(props_[i], state_[i]); }) {
+      out = Law::bond(props_[i], state_[i]);
+      return true;
+    }
+    return false;
+  }
+  void set_bond(std::size_t i, const BondView& b, double gap, double fn, double fs) override {
+    if constexpr (requires { Law::set_bond(props_[i], state_[i], b, gap, fn, fs); })
+      Law::set_bond(props_[i], state_[i], b, gap, fn, fs);
+  }
+
   std::vector<double> properties(std::size_t i) const override {
     static_assert(sizeof(typename Law::Props) == Law::property_names.size() * sizeof(double));
     std::vector<double> v(Law::property_names.size());

@@ -53,6 +53,22 @@ struct MohrCoulomb {
     return coulomb_reach(p.strength, st.broken, p.ks > 0.0, fn, fs, dfn, dfs);
   }
 
+  // Stress corrosion degrades the springs and the strength; the spring origin moves so the
+  // contact carries fn at its gap (the normal force is in total form).
+  static BondView bond(const Props& p, const State& st) {
+    return {p.kn, p.ks, p.strength.tension_force, p.strength.cohesion_force, p.strength.tan_phi,
+            st.broken};
+  }
+  static void set_bond(Props& p, State& st, const BondView& b, double gap, double fn, double fs) {
+    p.kn = b.kn;
+    p.ks = b.ks;
+    p.strength.tension_force = b.tension_force;
+    p.strength.cohesion_force = b.cohesion_force;
+    st.u_dil = gap + fn / p.kn;
+    st.fs = fs;
+    st.broken = b.broken;
+  }
+
   static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {
     LawResult r{-p.kn * (k.gap - st.u_dil), 0.0, ContactEvent::none, true};
     if (opens_in_tension(p.strength, st.broken, r)) {

@@ -2,6 +2,7 @@
 // Explicit central-difference integration of rigid blocks and of the gridpoints of deformable
 // blocks (src/solver/gridpoints.cpp) with Cundall local damping (PHYSICS 1.3, 5.1, 6, 7). Each
 // step: contact geometry -> laws -> block and gridpoint forces -> damping -> integration.
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -36,6 +37,7 @@ struct Energy {
   double slip = 0.0;
   double breakage = 0.0;
   double viscous = 0.0;  // dashpots of viscous (Burger's) contacts
+  double corrosion = 0.0;  // strain energy the stress-corrosion layers took from bonds
 };
 
 class Solver {
@@ -88,6 +90,16 @@ class Solver {
   double contact_stiffness_on(std::size_t b) const;
   // Throws InstabilityError if the state is not finite or contacts overlap by more than d/2.
   void check_stability() const;
+  // Stress corrosion (app/corrosion_control): contact i's bond, false if its law has none.
+  bool bond(std::size_t i, laws::BondView& out) const;
+  // Gives contact i the degraded bond b, carrying (fn, fs) N at its gap; the strain energy this
+  // takes from it is the energy term `corrosion`.
+  void set_bond(std::size_t i, const laws::BondView& b, double fn, double fs);
+  // Breaks contact i's bond: a crack of `type` at `time` s (the corrosion clock).
+  void break_bond(std::size_t i, laws::ContactEvent type, double time);
+  // Cracks of the following steps are stamped with this time (s) instead of the solver's: a
+  // corrosion stage's clock. NaN: the solver's time again.
+  void set_crack_clock(double t) { crack_clock_ = t; }
   // Checkpoints: everything a step reads that an earlier step wrote, the law groups' state
   // included. The thread parts are redone on loading, for the thread count then.
   void save(checkpoint::OutArchive& ar) const;
@@ -125,6 +137,7 @@ class Solver {
   std::vector<laws::CrackEvent> cracks_;
   Energy energy_;
   double dt_ = 0.0, critical_dt_ = 0.0, time_ = 0.0;
+  double crack_clock_ = std::numeric_limits<double>::quiet_NaN();
   bool fixed_step_warned_ = false;
   long steps_ = 0, last_detection_ = 0;
   std::size_t initial_bonded_ = 0, detections_ = 0;

@@ -1,0 +1,111 @@
+// Stress corrosion (PHYSICS 13): the beam section vorodec maps a sub-block joint onto, and the
+// corrosion stage end to end (A11 is a verification case).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "run_support.hpp"
+#include "scenes.hpp"
+#include "vorodec/laws/stress_corrosion.hpp"
+#include "vorodec/model/build.hpp"
+#include "vorodec/model/contact_geometry.hpp"
+
+using namespace vorodec;
+
+namespace {
+constexpr double a = 0.01, jkn = 1e13, jks = 4e12;  // m, Pa/m
+
+// The joint's contacts as the corrosion stage reads them: forces and points along the joint.
+std::vector<laws::PairContact> joint_contacts(model::Model& m, std::vector<std::size_t>& index) {
+  std::vector<laws::PairContact> out;
+  index.clear();
+  model::Point tangent{0, 0};
+  for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+    model::Contact& c = m.contacts[i];
+    const model::ContactFrame f = model::contact_frame(m.blocks.corners(), c);
+    if (out.empty()) tangent = {-f.n.y, f.n.x};
+    out.push_back({c.fn, c.fs, dot(f.point, tangent), c.length});
+    index.push_back(i);
+  }
+  return out;
+}
+}  // namespace
+
+TEST(StressCorrosion, BondSectionStressesAreThePapersBeamFormulas) {
+  const laws::BondSection s{2e3, -300.0, 0.4, 2e-3};  // N, N, N m, m
+  EXPECT_DOUBLE_EQ(laws::bond_tension(s), -2e3 / 2e-3 + 6.0 * 0.4 / (2e-3 * 2e-3));
+  EXPECT_DOUBLE_EQ(laws::bond_shear(s), 300.0 / 2e-3);
+  // D_min: forces held, the section at D_min is exactly at its strength (tension here).
+  const laws::BondStrength b{1.0e9, 1e12, 0.5};
+  const laws::BondedLength law{25.8, 0.0, 0.01};
+  const double d_min = laws::min_bonded_length(law, s, b, 2e-3);
+  laws::BondSection at = s;
+  at.d = d_min;
+  EXPECT_NEAR(laws::bond_tension(at), b.tension, 1e-9 * b.tension);
+  EXPECT_LT(d_min, s.d);
+  // Shear-limited: |Fs| = xi D c + Fn tan(phi).
+  const laws::BondStrength weak_shear{1e12, 1.0e6, 0.5};
+  at = {2e3, 2500.0, 0.0, 2e-3};
+  at.d = laws::min_bonded_length(law, at, weak_shear, 2e-3);
+  EXPECT_NEAR(at.d, (2500.0 - 2e3 * 0.5) / 1.0e6, 1e-15);
+  EXPECT_NEAR(laws::bond_shear(at), weak_shear.cohesion + at.fn / at.d * weak_shear.tan_phi, 1e-3);
+}
+
+// One joint between two rigid squares, pressed, sheared and bent through the real solver: the
+// pair's forces are the section's (Fn = jkn D delta, Fs = jks D u, M = jkn J theta with J the
+// pair's second moment of length), and shrinking the bonded length to xi D at unchanged
+// displacements leaves the joint with xi Fn, xi Fs and xi^3 M.
+TEST(StressCorrosion, ShrinkingABentJointScalesItsForceByXiAndItsMomentByXiCubed) {
+  model::Model m;
+  m.rounding_length = 0.01 * a;
+  model::add_block(m, verification::square(0, 0, a), 2600, model::Group::specimen);
+  model::add_block(m, verification::square(0, a, a), 2600, model::Group::specimen);
+  solver::SolverSettings settings;
+  auto solver = verification::make_solver(
+      m, "mohr_coulomb",
+      verification::params({{"jkn", jkn}, {"jks", jks}, {"tension", 1e10}, {"cohesion", 1e10},
+                            {"friction", 30.0}, {"dilation", 0.0}}),
+      settings);
+  m.blocks.prescribed.assign(2, 1);
+  const double delta = 1e-7, theta = 1e-5, u = 2e-8, dt = solver->dt();
+  // Block 1 turns by theta about the joint's centre, moves down by delta and sideways by u.
+  m.blocks.vx[1] = (-theta * 0.5 * a + u) / dt;
+  m.blocks.vy[1] = -delta / dt;
+  m.blocks.omega[1] = theta / dt;
+  solver->step();
+  m.blocks.vx[1] = m.blocks.vy[1] = m.blocks.omega[1] = 0.0;
+  solver->step();
+  std::vector<std::size_t> index;
+  const std::vector<laws::PairContact> pair = joint_contacts(m, index);
+  ASSERT_GE(pair.size(), 2u);
+  double length = 0;
+  for (const auto& c : pair) length += c.length;
+  EXPECT_NEAR(length, a, 1e-9 * a);
+  const laws::PairSection p = laws::pair_section(pair, length);
+  // To 1e-4: the contact points are not exactly symmetric about the centre, so the turn adds a
+  // little to Fn and Fs.
+  EXPECT_NEAR(p.section.fn, jkn * length * delta, 1e-4 * jkn * length * delta);
+  EXPECT_NEAR(std::abs(p.section.fs), jks * length * u, 1e-4 * jks * length * u);
+  EXPECT_NEAR(std::abs(p.section.m), jkn * p.inertia * theta, 1e-3 * jkn * p.inertia * theta);
+  // The pair's points sit near the joint's ends: J is close to D^3 / 4 (three times the beam's).
+  EXPECT_NEAR(p.inertia, a * a * a / 4.0, 0.05 * a * a * a / 4.0);
+
+  const double xi = 0.6;
+  const std::vector<laws::PairContact> shrunk = laws::shrink_pair(pair, p, xi);
+  for (std::size_t n = 0; n < index.size(); ++n) {
+    laws::BondView b;
+    ASSERT_TRUE(solver->bond(index[n], b));
+    b.kn *= xi;
+    b.ks *= xi;
+    solver->set_bond(index[n], b, shrunk[n].fn, shrunk[n].fs);
+  }
+  solver->step();  // no motion: the law's own forces at the unchanged displacements
+  const laws::PairSection q = laws::pair_section(joint_contacts(m, index), xi * length);
+  EXPECT_NEAR(q.section.fn, xi * p.section.fn, 1e-9 * p.section.fn);
+  EXPECT_NEAR(q.section.fs, xi * p.section.fs, 1e-9 * std::abs(p.section.fs));
+  EXPECT_NEAR(q.section.m, xi * xi * xi * p.section.m, 1e-9 * std::abs(p.section.m));
+  // The shrunk section's stress is the paper's eq. 17: -Fn / A + xi |M| R / I.
+  EXPECT_NEAR(laws::bond_tension(q.section),
+              -p.section.fn / length + xi * 6.0 * std::abs(p.section.m) / (length * length),
+              1e-6 * std::abs(p.section.fn / length));
+}
