@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -377,4 +378,103 @@ TEST(BadInput, CreepStageWithoutDashpotsOrAStepIsRejected) {
                            "[[stage]]\ncontrol = \"creep\"\ndeviatoric_stress = 1e6\n"
                            "duration = 10\n";
   EXPECT_TRUE(rejected("creep_without_dashpots", text, "stage[1].control", 18, "has none"));
+}
+
+namespace {
+
+// A small grain-based model with the corrosion layers and a corrosion stage.
+const char* corrosion_model = R"(seed = 3
+[specimen]
+kind = "grains"
+width = 0.01
+height = 0.02
+grain_size = 2.5e-3
+sub_block_size = 1.2e-3
+min_edge_length = 1e-4
+[[mineral]]
+name = "feldspar"
+fraction = 1.0
+density = 2600
+[joints.intergranular]
+jkn = 2e13
+jks = 8e12
+tension = 8e6
+cohesion = 16e6
+friction = 25
+[joints.transgranular]
+jkn = 4e13
+jks = 1.6e13
+tension = 16e6
+cohesion = 32e6
+friction = 35
+[corrosion]
+beta_up = 6e-15
+beta_low = 1e-20
+r_mid = 0.7
+k_v = -55
+beta2 = 25.8
+activation_stress = 6e6
+beta4 = 25.8
+activation_level = 0.4
+[[stage]]
+control = "corrosion"
+driving_stress_ratio = 0.8
+peak_stress = 60e6
+steps_per_failure = 4
+)";
+
+// The line of `text` that holds `needle` (1-based).
+int line_of(const std::string& text, const std::string& needle) {
+  const auto pos = text.find(needle);
+  EXPECT_NE(pos, std::string::npos) << needle;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + pos, '\n'));
+}
+
+}  // namespace
+
+TEST(BadInput, CorrosionModelPassesCheck) {
+  const Outcome o = run_capture("check " + write_model("corrosion_good", corrosion_model).string());
+  EXPECT_EQ(o.code, 0) << o.output;
+}
+
+TEST(BadInput, CorrosionOnASpecimenWithoutGrainsIsRejected) {
+  const std::string text =
+      replace(good_model, "[[stage]]", "[corrosion]\nbeta_up = 6e-15\n[[stage]]");
+  EXPECT_TRUE(rejected("corrosion_no_grains", text, "corrosion", line_of(text, "[corrosion]"),
+                       "grain-based specimen"));
+}
+
+TEST(BadInput, CorrosionStageWithoutTheLayersConstantsIsRejected) {
+  std::string text = corrosion_model;
+  text.erase(text.find("[corrosion]"), text.find("[[stage]]") - text.find("[corrosion]"));
+  EXPECT_TRUE(rejected("corrosion_no_table", text, "stage[0].control",
+                       line_of(text, "control = \"corrosion\""), "[corrosion] table"));
+}
+
+TEST(BadInput, DrivingStressRatioOutsideZeroToOneIsRejected) {
+  const std::string m = corrosion_model;
+  const int line = line_of(m, "driving_stress_ratio");
+  EXPECT_TRUE(rejected("corrosion_rs_high",
+                       replace(m, "driving_stress_ratio = 0.8", "driving_stress_ratio = 1.2"),
+                       "stage[0].driving_stress_ratio", line, "must be in (0, 1)"));
+  EXPECT_TRUE(rejected("corrosion_rs_negative",
+                       replace(m, "driving_stress_ratio = 0.8", "driving_stress_ratio = -0.5"),
+                       "stage[0].driving_stress_ratio", line, "must be > 0"));
+}
+
+TEST(BadInput, NegativeCorrosionRatesAreRejected) {
+  const std::string m = corrosion_model;
+  EXPECT_TRUE(rejected("corrosion_beta_negative", replace(m, "beta_up = 6e-15", "beta_up = -6e-15"),
+                       "corrosion.beta_up", line_of(m, "beta_up"), "must be > 0"));
+  EXPECT_TRUE(rejected("corrosion_beta2_negative", replace(m, "beta2 = 25.8", "beta2 = -25.8"),
+                       "corrosion.beta2", line_of(m, "beta2"), "must be > 0"));
+  EXPECT_TRUE(rejected("corrosion_kv_positive", replace(m, "k_v = -55", "k_v = 55"),
+                       "corrosion.k_v", line_of(m, "k_v"), "must be negative"));
+}
+
+TEST(BadInput, FewerThanOneCorrosionStepPerFailureIsRejected) {
+  const std::string m = corrosion_model;
+  EXPECT_TRUE(
+      rejected("corrosion_nc", replace(m, "steps_per_failure = 4", "steps_per_failure = 0.5"),
+               "stage[0].steps_per_failure", line_of(m, "steps_per_failure"), "n_c must be >= 1"));
 }

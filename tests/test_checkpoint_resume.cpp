@@ -92,6 +92,13 @@ TEST(Resume, GrainBasedDeformableRunMatchesTheUninterruptedRun) {
                             3));
 }
 
+TEST(Resume, CorrosionStageStoppedMidFatigueMatchesTheUninterruptedRun) {
+  // corrosion_small: loaded by step ~15000, then corroded until it collapses (step 154400); the
+  // stops fall between corrosion steps, in equilibria, and in the collapse.
+  EXPECT_NO_FATAL_FAILURE(expect_resume_matches("corrosion", kModels + "corrosion_small.toml",
+                                                {9000, 40000, 100000, 152000}));
+}
+
 TEST(Resume, DeformableRunMatchesTheUninterruptedRun) {
   EXPECT_NO_FATAL_FAILURE(
       expect_resume_matches("deformable", kModels + "deformable_small.toml", {1200, 3000}));

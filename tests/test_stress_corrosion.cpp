@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "run_support.hpp"
 #include "scenes.hpp"
@@ -61,11 +64,14 @@ TEST(StressCorrosion, ShrinkingABentJointScalesItsForceByXiAndItsMomentByXiCubed
   model::add_block(m, verification::square(0, 0, a), 2600, model::Group::specimen);
   model::add_block(m, verification::square(0, a, a), 2600, model::Group::specimen);
   solver::SolverSettings settings;
-  auto solver = verification::make_solver(
-      m, "mohr_coulomb",
-      verification::params({{"jkn", jkn}, {"jks", jks}, {"tension", 1e10}, {"cohesion", 1e10},
-                            {"friction", 30.0}, {"dilation", 0.0}}),
-      settings);
+  auto solver = verification::make_solver(m, "mohr_coulomb",
+                                          verification::params({{"jkn", jkn},
+                                                                {"jks", jks},
+                                                                {"tension", 1e10},
+                                                                {"cohesion", 1e10},
+                                                                {"friction", 30.0},
+                                                                {"dilation", 0.0}}),
+                                          settings);
   m.blocks.prescribed.assign(2, 1);
   const double delta = 1e-7, theta = 1e-5, u = 2e-8, dt = solver->dt();
   // Block 1 turns by theta about the joint's centre, moves down by delta and sideways by u.
@@ -87,8 +93,12 @@ TEST(StressCorrosion, ShrinkingABentJointScalesItsForceByXiAndItsMomentByXiCubed
   EXPECT_NEAR(p.section.fn, jkn * length * delta, 1e-4 * jkn * length * delta);
   EXPECT_NEAR(std::abs(p.section.fs), jks * length * u, 1e-4 * jks * length * u);
   EXPECT_NEAR(std::abs(p.section.m), jkn * p.inertia * theta, 1e-3 * jkn * p.inertia * theta);
-  // The pair's points sit near the joint's ends: J is close to D^3 / 4 (three times the beam's).
+  // The pair's points sit near the joint's ends: J is close to D^3 / 4 (three times the beam's),
+  // and the section's stress at D is the larger of the two contacts' stresses.
   EXPECT_NEAR(p.inertia, a * a * a / 4.0, 0.05 * a * a * a / 4.0);
+  double most = -1e300;
+  for (const auto& c : pair) most = std::max(most, -c.fn / c.length);
+  EXPECT_NEAR(laws::bond_tension(p.section), most, 1e-9 * std::abs(most));
 
   const double xi = 0.6;
   const std::vector<laws::PairContact> shrunk = laws::shrink_pair(pair, p, xi);
@@ -105,7 +115,110 @@ TEST(StressCorrosion, ShrinkingABentJointScalesItsForceByXiAndItsMomentByXiCubed
   EXPECT_NEAR(q.section.fs, xi * p.section.fs, 1e-9 * std::abs(p.section.fs));
   EXPECT_NEAR(q.section.m, xi * xi * xi * p.section.m, 1e-9 * std::abs(p.section.m));
   // The shrunk section's stress is the paper's eq. 17: -Fn / A + xi |M| R / I.
-  EXPECT_NEAR(laws::bond_tension(q.section),
-              -p.section.fn / length + xi * 6.0 * std::abs(p.section.m) / (length * length),
-              1e-6 * std::abs(p.section.fn / length));
+  laws::BondSection shrunk_section = q.section;
+  shrunk_section.bending = p.section.bending;
+  EXPECT_NEAR(
+      laws::bond_tension(shrunk_section),
+      -p.section.fn / length + xi * p.section.bending * std::abs(p.section.m) / (length * length),
+      1e-6 * std::abs(p.section.fn / length));
+}
+
+namespace {
+namespace fs = std::filesystem;
+namespace run = vorodec::testing;
+const fs::path kSmall = fs::path(VORODEC_SOURCE_DIR) / "tests/models/corrosion_small.toml";
+
+const fs::path& small_run() {
+  static const fs::path out = [] {
+    const fs::path o = run::out_dir("corrosion_small");
+    EXPECT_EQ(
+        run::run_vorodec("run " + kSmall.string() + " --threads 1 --no-vtk --out " + o.string()),
+        0);
+    return o;
+  }();
+  return out;
+}
+
+// The number after "key": in a JSON text (NaN if absent or null).
+double json_value(const std::string& json, const std::string& key) {
+  const auto pos = json.rfind("\"" + key + "\": ");
+  if (pos == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + pos + key.size() + 4, nullptr);
+}
+}  // namespace
+
+TEST(StressCorrosion, FatigueStageHoldsItsStressAndCreepsUntilTheSpecimenCollapses) {
+  const std::string json = run::slurp(small_run() / "summary.json");
+  EXPECT_NE(json.find("static-fatigue failure in stage 'fatigue'"), std::string::npos) << json;
+  const double failure = json_value(json, "failure_time_s");
+  EXPECT_GT(failure, 0.0);
+  EXPECT_LT(failure, 10 * 86400.0);
+  EXPECT_GT(json_value(json, "corrosion_steps"), 10.0);
+  EXPECT_GT(json_value(json, "broken_transgranular") + json_value(json, "broken_intergranular"),
+            0.0);
+  // The equilibria: the held stress (rs 0.8 of 45 MPa above 0.01 MPa), a clock that only runs
+  // forward, an axial strain that grows (creep) and cracks that accumulate.
+  std::ifstream in(small_run() / "history.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_NE(header.find("corrosion_time"), std::string::npos);
+  const auto column = [&](const std::string& name) {
+    std::stringstream ss(header);
+    std::size_t i = 0;
+    for (std::string cell; std::getline(ss, cell, ','); ++i)
+      if (cell == name) return i;
+    ADD_FAILURE() << name;
+    return i;
+  };
+  const std::size_t t = column("corrosion_time"), e = column("axial_strain"),
+                    s = column("axial_stress"), n = column("cracks_tensile");
+  const double target = 1e4 + 0.8 * (45e6 - 1e4);
+  std::vector<std::vector<double>> eq;
+  std::ifstream again(small_run() / "history.csv");
+  std::getline(again, header);
+  for (std::string line; std::getline(again, line);)
+    if (line.find("fatigue:equilibrium") != std::string::npos) {
+      std::vector<double> row;
+      std::stringstream ss(line);
+      for (std::string cell; std::getline(ss, cell, ',');) row.push_back(std::atof(cell.c_str()));
+      eq.push_back(row);
+    }
+  ASSERT_GT(eq.size(), 10u);
+  for (std::size_t k = 0; k < eq.size(); ++k) {
+    EXPECT_NEAR(eq[k][s], target, 0.01 * target) << "equilibrium " << k;
+    if (k == 0) continue;
+    EXPECT_GE(eq[k][t], eq[k - 1][t]);
+    EXPECT_GE(eq[k][n], eq[k - 1][n]);
+  }
+  EXPECT_GT(eq.back()[e], eq.front()[e]);
+  EXPECT_NEAR(eq.back()[t], failure, 1e-6 * failure);
+}
+
+TEST(StressCorrosion, CracksOfAFatigueStageCarryTheCorrosionClock) {
+  const auto cracks = run::read_csv(small_run() / "cracks.csv");
+  const double failure = json_value(run::slurp(small_run() / "summary.json"), "failure_time_s");
+  ASSERT_FALSE(cracks.empty());
+  double last = 0;
+  std::size_t later = 0;
+  for (const auto& c : cracks) {
+    EXPECT_GE(c[0], last) << "cracks in the order they formed";
+    EXPECT_LE(c[0], failure * (1 + 1e-9));
+    last = c[0];
+    later += c[0] > 0;
+  }
+  EXPECT_GT(later, 0u) << "cracks formed under corrosion carry its time";
+}
+
+TEST(StressCorrosion, NothingCorrodesBelowTheActivationThresholds) {
+  const fs::path out = run::out_dir("corrosion_inactive");
+  ASSERT_EQ(
+      run::run_vorodec("run " + kSmall.string() + " --threads 1 --no-vtk --out " + out.string() +
+                       " --set corrosion.activation_stress=1e9"
+                       " --set corrosion.activation_level=0.99"
+                       " --set 'stage[0].driving_stress_ratio=0.3'"),
+      0);
+  const std::string json = run::slurp(out / "summary.json");
+  EXPECT_NE(json.find("no bond corrodes"), std::string::npos) << json;
+  EXPECT_EQ(json_value(json, "corrosion_time_s"), 0.0);
+  EXPECT_EQ(json_value(json, "corrosion_steps"), 0.0);
 }

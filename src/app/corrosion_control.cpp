@@ -54,8 +54,8 @@ CorrosionControl::CorrosionControl(const loading::Stage& stage, const io::Corros
         (b.tension_force <= 0 && b.cohesion_force <= 0))
       continue;
     const Bond bond{c.id, b.kn, b.ks, b.tension_force, b.cohesion_force, b.tan_phi, 1.0};
-    const bool inside = block_grain[static_cast<std::size_t>(c.a)] ==
-                        block_grain[static_cast<std::size_t>(c.b)];
+    const bool inside =
+        block_grain[static_cast<std::size_t>(c.a)] == block_grain[static_cast<std::size_t>(c.b)];
     if (inside && config.transgranular)
       joints[{std::min(c.a, c.b), std::max(c.a, c.b)}].push_back(bond);
     else if (!inside && config.intergranular)
@@ -91,8 +91,10 @@ CorrosionControl::Next CorrosionControl::after_step(solver::Solver& solver, mode
   const bool held = std::abs(s.axial_stress - target) <= 0.01 * target;
   if (!held || solver.unbalanced_force_ratio() >= cs.equilibrium_ratio) {
     if (since_equilibrium_ < cs.max_equilibrium_steps) return Next::step;
-    if (started_) report_.failure_time = report_.time;
-    else report_.failure_time = 0.0;  // it could not take the load at all
+    if (started_)
+      report_.failure_time = report_.time;
+    else
+      report_.failure_time = 0.0;  // it could not take the load at all
     return Next::collapsed;
   }
   since_equilibrium_ = 0;
@@ -230,7 +232,7 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
     if (rate[q] == 0) continue;
     floor[q] = laws::min_strength_factor(cfg.degradation, st, p0);
     tensile[q] = st.sigma > 0 && st.sigma / p0.tension >= (st.tau + st.sigma * p0.tan_phi) /
-                                                               std::max(p0.cohesion, 1e-300);
+                                                              std::max(p0.cohesion, 1e-300);
     stress[q] = {st, p0};
     shortest = std::min(shortest, frozen ? laws::time_to(b.lambda, floor[q], rate[q])
                                          : laws::held_time(factor_rate(q), b.lambda, floor[q]));
@@ -253,8 +255,7 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
   }
   if (broke || !std::isfinite(shortest)) return broke;
 
-  const double dt =
-      std::min(clock_.next(shortest), stage_.corrosion.max_time - report_.time);
+  const double dt = std::min(clock_.next(shortest), stage_.corrosion.max_time - report_.time);
   report_.time += dt;
   report_.min_step = report_.corrosion_steps ? std::min(report_.min_step, dt) : dt;
   report_.max_step = std::max(report_.max_step, dt);
@@ -271,10 +272,10 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
       joint.done = 1;
       const laws::BondSection& sec = jn.p.section;
       // Which limit set the floor: the tensile root (or xi_a) or the shear one.
-      const bool shear = jn.strength.cohesion > 0 &&
-                         std::abs((std::abs(sec.fs) - sec.fn * jn.strength.tan_phi) /
-                                      jn.strength.cohesion -
-                                  jn.d_min) <= 1e-12 * joint.d0;
+      const bool shear =
+          jn.strength.cohesion > 0 &&
+          std::abs((std::abs(sec.fs) - sec.fn * jn.strength.tan_phi) / jn.strength.cohesion -
+                   jn.d_min) <= 1e-12 * joint.d0;
       break_contacts(jn.contacts, !shear, report_.broken_transgranular);
       continue;
     }
@@ -282,10 +283,10 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
     const std::vector<laws::PairContact> shrunk = laws::shrink_pair(jn.pair, jn.p, xi);
     for (std::size_t n = 0; n < jn.contacts.size(); ++n) {
       const Bond& b = bonds_[joint.first + n];
-      solver.set_bond(jn.contacts[n],
-                      {total * b.kn0, total * b.ks0, total * b.tension0, total * b.cohesion0,
-                       b.tan_phi, false},
-                      shrunk[n].fn, shrunk[n].fs);
+      solver.set_bond(
+          jn.contacts[n],
+          {total * b.kn0, total * b.ks0, total * b.tension0, total * b.cohesion0, b.tan_phi, false},
+          shrunk[n].fn, shrunk[n].fs);
     }
     joint.d = d;
   }
@@ -302,8 +303,8 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
       continue;
     }
     const model::Contact& c = model.contacts[i];
-    solver.set_bond(i, {b.kn0, b.ks0, b.lambda * b.tension0, b.lambda * b.cohesion0, b.tan_phi,
-                        false},
+    solver.set_bond(i,
+                    {b.kn0, b.ks0, b.lambda * b.tension0, b.lambda * b.cohesion0, b.tan_phi, false},
                     c.fn, c.fs);
   }
   return broke;

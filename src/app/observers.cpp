@@ -70,7 +70,8 @@ class HistoryObserver final : public Observer {
     // Viscous contacts (Burger's): their dashpots' work, J/m; creep runs: time in days.
     if (viscous_) h.emplace_back("viscous_energy");
     if (creep_) h.emplace_back("time_days");
-    if (corrosion_) h.emplace_back("corrosion_time");  // s, the corrosion stages' clock
+    // Corrosion stages: their clock (s) and the strain energy the layers took from bonds (J/m).
+    if (corrosion_) h.insert(h.end(), {"corrosion_time", "corrosion_energy"});
     // Deformable specimens: the zones' area-weighted mean stress (compression positive, Pa).
     if (zoned_) h.insert(h.end(), {"zone_stress_xx", "zone_stress_yy", "zone_stress_xy"});
     if (grains_) {
@@ -114,7 +115,7 @@ class HistoryObserver final : public Observer {
     std::vector<double> full(std::begin(row), std::end(row));
     if (viscous_) full.push_back(e.viscous);
     if (creep_) full.push_back(solver.time() / 86400.0);
-    if (corrosion_) full.push_back(v.corrosion_time);
+    if (corrosion_) full.insert(full.end(), {v.corrosion_time, e.corrosion});
     if (zoned_) {
       const model::ZoneStress m = model::mean_stress(v.model, Group::specimen);
       full.insert(full.end(), {-m.xx, -m.yy, -m.xy});

@@ -39,10 +39,9 @@ RunView QuasiStaticDriver::view() const {
   const auto& stages = cfg_.load_path.stages;
   const bool creep = std::any_of(stages.begin(), stages.end(),
                                  [](const loading::Stage& s) { return s.creep.enabled; });
-  const bool corrosion = std::any_of(stages.begin(), stages.end(), [](const loading::Stage& s) {
-    return s.corrosion.enabled;
-  });
-  const double clock = corrosion_                  ? corrosion_->time()
+  const bool corrosion = std::any_of(stages.begin(), stages.end(),
+                                     [](const loading::Stage& s) { return s.corrosion.enabled; });
+  const double clock = corrosion_                   ? corrosion_->time()
                        : outcome_.corrosion.empty() ? 0.0
                                                     : outcome_.corrosion.back().second.time;
   return {model_, solver_, specimen_, state_, v_, static_cast<int>(si_), creep, corrosion, clock};
@@ -77,10 +76,10 @@ void QuasiStaticDriver::advance(Observers& observers) {
       CorrosionStageReport r = corrosion_->report();
       r.failure_time = r.time;
       outcome_.corrosion.emplace_back(si_, r);
-      outcome_.status =
-          fmt::format("static-fatigue failure in stage '{}' after {:.4g} s of corrosion, "
-                      "unstable: {}",
-                      stage().name, r.time, e.what());
+      outcome_.status = fmt::format(
+          "static-fatigue failure in stage '{}' after {:.4g} s of corrosion, "
+          "unstable: {}",
+          stage().name, r.time, e.what());
       solver_.set_crack_clock(std::numeric_limits<double>::quiet_NaN());
     }
     restore_good_state();
@@ -257,6 +256,10 @@ ProgressReport QuasiStaticDriver::progress() const {
     const CorrosionStageReport& c = corrosion_->report();
     r.clock = fmt::format("corrosion {:.4g} s = {:.4g} days = {:.3g} years, step {}", c.time,
                           c.time / 86400.0, c.time / (365.25 * 86400.0), c.corrosion_steps);
+    // When the specimen fails is what the stage finds out: no percentage.
+    r.waiting = fmt::format("static fatigue: until collapse; {} tensile + shear cracks",
+                            solver_.cracks().size());
+    return r;
   }
   if (std::isnan(st.end.post_peak_fraction)) {
     r.fraction = stage_fraction_;

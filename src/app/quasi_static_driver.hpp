@@ -54,7 +54,7 @@ class QuasiStaticDriver final : public Driver {
   std::size_t si_ = 0;  // current stage
   double t0_ = 0;       // s, its start time
   std::optional<loading::StageControl> control_;
-  std::optional<CreepControl> creep_;  // creep stages
+  std::optional<CreepControl> creep_;          // creep stages
   std::optional<CorrosionControl> corrosion_;  // corrosion stages
   measure::SpecimenState state_;
   double v_ = 0;               // m/s, top platen

@@ -102,13 +102,14 @@ std::string corrosion_json(const io::ModelConfig& cfg, const RunSummary& s) {
     const loading::Stage& st = cfg.load_path.stages[i];
     rows += fmt::format(
         "{}\n    {{\"stage\": \"{}\", \"driving_stress_ratio\": {:.6g}, "
-        "\"target_stress_Pa\": {:.8g}, \"corrosion_time_s\": {:.6g}, \"failure_time_s\": {}, "
+        "\"target_stress_Pa\": {:.8g}, \"corrosion_time_s\": {:.10g}, \"failure_time_s\": {}, "
         "\"corrosion_steps\": {}, \"mechanical_steps\": {}, "
         "\"mechanical_steps_per_corrosion_step\": {:.6g}, \"corrosion_step_s\": [{:.6g}, "
         "{:.6g}], \"creep_strain\": {:.6g}, \"broken_transgranular\": {}, "
         "\"broken_intergranular\": {}, \"corroding_bonds\": {}, \"corroding_contacts\": {}}}",
         rows.empty() ? "" : ",", st.name, st.corrosion.driving_stress_ratio, st.target_stress,
-        r.time, std::isnan(r.failure_time) ? std::string("null") : fmt::format("{:.6g}", r.failure_time),
+        r.time,
+        std::isnan(r.failure_time) ? std::string("null") : fmt::format("{:.10g}", r.failure_time),
         r.corrosion_steps, r.mechanical_steps,
         r.corrosion_steps ? double(r.mechanical_steps) / double(r.corrosion_steps) : 0.0,
         r.min_step, r.max_step, r.last_strain - r.first_strain, r.broken_transgranular,

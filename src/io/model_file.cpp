@@ -438,8 +438,8 @@ void read_corrosion_stage(TomlSection& sec, loading::Stage& st, const ModelConfi
   const double s3 = cfg.load_path.confining_stress;
   c.peak_stress = sec.positive("peak_stress", laws::required);
   if (c.peak_stress <= s3)
-    sec.fail("peak_stress", fmt::format("must exceed the confining stress {} Pa (got {})", s3,
-                                        c.peak_stress));
+    sec.fail("peak_stress",
+             fmt::format("must exceed the confining stress {} Pa (got {})", s3, c.peak_stress));
   st.target_stress = s3 + c.driving_stress_ratio * (c.peak_stress - s3);
   st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
   c.steps_per_failure = sec.number("steps_per_failure", c.steps_per_failure);
@@ -471,8 +471,9 @@ void read_corrosion_stage(TomlSection& sec, loading::Stage& st, const ModelConfi
 // [corrosion]: the constants of the two layers (PHYSICS 13; paper 000 Table 4 for LdB granite).
 void read_corrosion(TomlSection sec, TomlSection& top, ModelConfig& cfg) {
   if (!cfg.grains)
-    top.fail("corrosion", "stress corrosion needs a grain-based specimen ([specimen] kind = "
-                          "\"grains\"): its layers act inside grains and on grain boundaries");
+    top.fail("corrosion",
+             "stress corrosion needs a grain-based specimen ([specimen] kind = "
+             "\"grains\"): its layers act inside grains and on grain boundaries");
   CorrosionConfig c;
   c.rate.beta_up = sec.positive("beta_up", laws::required);
   c.rate.beta_low = sec.positive("beta_low", laws::required);
@@ -490,8 +491,8 @@ void read_corrosion(TomlSection sec, TomlSection& top, ModelConfig& cfg) {
   const GrainConfig& g = *cfg.grains;
   const auto bonded_law = [&](const LawChoice& law, const char* key) {
     if (law.name != "mohr_coulomb")
-      sec.fail(key, fmt::format("corrodes bonded mohr_coulomb joints; these have law '{}'",
-                                law.name));
+      sec.fail(key,
+               fmt::format("corrodes bonded mohr_coulomb joints; these have law '{}'", law.name));
   };
   if (c.transgranular) {
     bonded_law(g.transgranular, "transgranular");
@@ -549,9 +550,10 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     if (st.stress_rate == 0) sec.fail("stress_rate", "must not be 0");
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
   } else {
-    sec.fail("control", fmt::format("must be \"platen_velocity\", \"axial_stress\", "
-                                    "\"stress_rate\", \"creep\", \"corrosion\" or \"cyclic\" (got \"{}\")",
-                                    control));
+    sec.fail("control",
+             fmt::format("must be \"platen_velocity\", \"axial_stress\", "
+                         "\"stress_rate\", \"creep\", \"corrosion\" or \"cyclic\" (got \"{}\")",
+                         control));
   }
   st.ramp_time = sec.non_negative("ramp_time", 0.0);
   const double nan = loading::StageEnd::unset;
@@ -561,8 +563,7 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
     if (!(st.end.post_peak_fraction > 0 && st.end.post_peak_fraction < 1))
       sec.fail("end_post_peak_fraction", "must be between 0 and 1");
   }
-  if (st.control != loading::Control::axial_stress ||
-      !(st.creep.enabled || st.corrosion.enabled))
+  if (st.control != loading::Control::axial_stress || !(st.creep.enabled || st.corrosion.enabled))
     st.end.duration = sec.has("end_time") ? sec.positive("end_time", nan) : nan;
   st.end.axial_stress = sec.has("end_axial_stress") ? sec.number("end_axial_stress", nan) : nan;
   if (st.control == loading::Control::stress_rate && std::isnan(st.end.axial_stress) &&

@@ -7,23 +7,23 @@ namespace vorodec::laws {
 double min_bonded_length(const BondedLength& law, const BondSection& s, const BondStrength& b,
                          double d0) {
   double d_min = law.xi_a * d0;
-  // Tension: the positive root of sigma_s D^2 xi^2 + Fn D xi - 6 |M| = 0 (paper 000, eq. 18).
+  // Tension: the positive root of sigma_s D^2 xi^2 + Fn D xi - bending |M| = 0 (paper 000,
+  // eq. 18, where bending = 6).
   if (b.tension > 0.0) {
-    const double disc = s.fn * s.fn + 24.0 * std::abs(s.m) * b.tension;
+    const double disc = s.fn * s.fn + 4.0 * s.bending * std::abs(s.m) * b.tension;
     d_min = std::max(d_min, (-s.fn + std::sqrt(disc)) / (2.0 * b.tension));
   } else {
     d_min = s.d;  // no tensile strength: nothing left to corrode
   }
   // Shear: |Fs| / (xi D) = c + Fn tan(phi) / (xi D)  ->  xi D = (|Fs| - Fn tan(phi)) / c.
-  if (b.cohesion > 0.0)
-    d_min = std::max(d_min, (std::abs(s.fs) - s.fn * b.tan_phi) / b.cohesion);
+  if (b.cohesion > 0.0) d_min = std::max(d_min, (std::abs(s.fs) - s.fn * b.tan_phi) / b.cohesion);
   return d_min;
 }
 
 double stress_level(const ContactStress& s, const InitialStrength& p, double lambda) {
   double m = 0.0;
-  if (s.sigma > 0.0) m = p.tension > 0.0 ? s.sigma / (lambda * p.tension)
-                                          : std::numeric_limits<double>::infinity();
+  if (s.sigma > 0.0)
+    m = p.tension > 0.0 ? s.sigma / (lambda * p.tension) : std::numeric_limits<double>::infinity();
   const double tau_s = lambda * p.cohesion - s.sigma * p.tan_phi;  // sigma_n = -sigma
   if (s.tau > 0.0)
     m = std::max(m, tau_s > 0.0 ? s.tau / tau_s : std::numeric_limits<double>::infinity());
@@ -48,11 +48,15 @@ PairSection pair_section(std::span<const PairContact> contacts, double bonded_le
     length += c.length;
   }
   p.centre /= length;
+  double reach = 0;
   for (const PairContact& c : contacts) {
     p.section.m += c.fn * (c.s - p.centre);
     p.inertia += c.length * (c.s - p.centre) * (c.s - p.centre);
+    reach = std::max(reach, std::abs(c.s - p.centre));
   }
   p.section.d = bonded_length;
+  // One point (or points that coincide) carries no moment: the paper's beam stands in.
+  if (p.inertia > 0) p.section.bending = reach * length * length / p.inertia;
   return p;
 }
 

@@ -458,7 +458,7 @@ namespace vorodec::solver {
 
 namespace {
 std::pair<std::size_t, std::size_t> group_of(const std::vector<std::size_t>& begin,
-                                              const model::Contact& c, std::size_t i) {
+                                             const model::Contact& c, std::size_t i) {
   return {c.law, i - begin[c.law]};
 }
 }  // namespace

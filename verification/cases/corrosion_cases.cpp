@@ -61,8 +61,8 @@ double a11_stepped(bool bonded_length, double s, double n_c, bool frozen) {
   for (int step = 0; step < 1000000; ++step) {
     const double r = rate(value);
     if (r == 0) return std::numeric_limits<double>::infinity();
-    const double dt = clock.next(frozen ? laws::time_to(value, floor, r)
-                                        : laws::held_time(rate, value, floor));
+    const double dt =
+        clock.next(frozen ? laws::time_to(value, floor, r) : laws::held_time(rate, value, floor));
     t += dt;
     value = frozen ? value - r * dt : laws::held_value_after(rate, value, floor, dt);
     if (value <= floor + 1e-12) return t;

@@ -81,7 +81,7 @@ struct CorrosionStageReport {
   long corrosion_steps = 0;
   long mechanical_steps = 0;  // solver steps in the stage (equilibria included)
   long broken_transgranular = 0, broken_intergranular = 0;  // bonds broken by corrosion
-  long active_bonds = 0, active_contacts = 0;  // corroding at the last corrosion step
+  long active_bonds = 0, active_contacts = 0;               // corroding at the last corrosion step
 };
 
 struct RunSummary {

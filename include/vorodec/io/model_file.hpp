@@ -67,10 +67,10 @@ struct GrainConfig {
 
 // [corrosion]: the stress-corrosion layers of a grain-based specimen (PHYSICS 13; paper 000).
 struct CorrosionConfig {
-  laws::DrivingRate rate;         // beta1(rs): m/s for bonded lengths
-  double beta3_per_beta1 = 1.0;   // 1/m: beta3 (1/s, strength factors) = this x beta1
-  bool transgranular = true;      // bonded-length reduction inside grains
-  bool intergranular = true;      // strength degradation on grain boundaries
+  laws::DrivingRate rate;        // beta1(rs): m/s for bonded lengths
+  double beta3_per_beta1 = 1.0;  // 1/m: beta3 (1/s, strength factors) = this x beta1
+  bool transgranular = true;     // bonded-length reduction inside grains
+  bool intergranular = true;     // strength degradation on grain boundaries
   laws::BondedLength bonded;
   laws::StrengthDegradation degradation;
 };
@@ -116,8 +116,8 @@ struct ModelConfig {
   std::optional<JointMix> joint_mix;
   std::optional<GrainConfig> grains;  // grain-based specimen
   std::optional<CorrosionConfig> corrosion;
-  LawChoice platens;                  // platen to specimen
-  bool platens_bonded = false;        // glued to the specimen (direct tension)
+  LawChoice platens;            // platen to specimen
+  bool platens_bonded = false;  // glued to the specimen (direct tension)
   solver::SolverSettings solver;
   long max_steps = 0;
   loading::LoadPath load_path;

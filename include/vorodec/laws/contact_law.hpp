@@ -103,8 +103,8 @@ struct NewContact {
 // A bonded contact's springs and strength as the stress-corrosion layers (stress_corrosion.hpp)
 // read and degrade them.
 struct BondView {
-  double kn, ks;                          // N/m
-  double tension_force, cohesion_force;   // N
+  double kn, ks;                         // N/m
+  double tension_force, cohesion_force;  // N
   double tan_phi;
   bool broken;
 };

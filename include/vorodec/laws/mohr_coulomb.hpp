@@ -56,7 +56,7 @@ struct MohrCoulomb {
   // Stress corrosion degrades the springs and the strength; the spring origin moves so the
   // contact carries fn at its gap (the normal force is in total form).
   static BondView bond(const Props& p, const State& st) {
-    return {p.kn, p.ks, p.strength.tension_force, p.strength.cohesion_force, p.strength.tan_phi,
+    return {p.kn,     p.ks, p.strength.tension_force, p.strength.cohesion_force, p.strength.tan_phi,
             st.broken};
   }
   static void set_bond(Props& p, State& st, const BondView& b, double gap, double fn, double fs) {

@@ -14,17 +14,21 @@ namespace vorodec::laws {
 // the rate constant of a corrosion stage at driving-stress ratio rs; k_v < 0 makes it rise with rs.
 struct DrivingRate {
   double beta_up, beta_low, r_mid, k_v;
-  double at(double rs) const { return (beta_up - beta_low) / (1.0 + std::exp(k_v * (rs - r_mid))) + beta_low; }
+  double at(double rs) const {
+    return (beta_up - beta_low) / (1.0 + std::exp(k_v * (rs - r_mid))) + beta_low;
+  }
 };
 
 // --- Inside grains: bonded-length reduction (PSC) ---
-// A bonded sub-block joint as the paper's 2D beam section of unit thickness: A = D, I = D^3 / 12,
-// R = D / 2 (bond_section_from_pair in app/corrosion_control maps the joint's contacts onto it).
+// A bonded section of unit thickness: A = D, I = k_I D^3 and R = k_R D, so that shrinking D to
+// xi D scales A by xi and I by xi^3 as the paper's 2D beam (k_I = 1/12, k_R = 1/2). `bending` is
+// R D^2 / I = k_R / k_I: 6 for the paper's beam; pair_section gives a joint's own.
 struct BondSection {
   double fn;  // N, normal force, compression positive
   double fs;  // N, shear force
   double m;   // N m, moment about the section's centre
   double d;   // m, bonded length
+  double bending = 6.0;
 };
 // The bond's strengths (stresses) and its friction; the shear strength is c + sigma_n tan(phi),
 // sigma_n = Fn / A (compression positive), as the Coulomb layer has it.
@@ -39,14 +43,15 @@ struct BondedLength {
 
 // Pa, the largest tensile stress of the section, -Fn / A + |M| R / I (tension positive).
 inline double bond_tension(const BondSection& s) {
-  return -s.fn / s.d + 6.0 * std::abs(s.m) / (s.d * s.d);
+  return -s.fn / s.d + s.bending * std::abs(s.m) / (s.d * s.d);
 }
 // Pa, the shear stress |Fs| / A.
-inline double bond_shear(const BondSection& s) { return std::abs(s.fs) / s.d; }
+inline double bond_shear(const BondSection& s) {
+  return std::abs(s.fs) / s.d;
+}
 // The section fails: tension or shear strength reached.
 inline bool bond_fails(const BondSection& s, const BondStrength& b) {
-  return bond_tension(s) >= b.tension ||
-         bond_shear(s) >= b.cohesion + s.fn / s.d * b.tan_phi;
+  return bond_tension(s) >= b.tension || bond_shear(s) >= b.cohesion + s.fn / s.d * b.tan_phi;
 }
 // m/s, zeta = beta1 exp(beta2 sigma / sigma_s) for sigma_a <= sigma < sigma_s, else 0.
 inline double length_rate(const BondedLength& law, double beta1, const BondSection& s,
@@ -56,23 +61,25 @@ inline double length_rate(const BondedLength& law, double beta1, const BondSecti
   return beta1 * std::exp(law.beta2 * sigma / b.tension);
 }
 // m, D_min: the largest bonded length at which the section, its forces held, breaks in tension
-// (sigma_s D^2 xi^2 + Fn D xi - 6 |M| = 0), in shear (|Fs| = xi D c + Fn tan(phi)), or by
+// (sigma_s D^2 xi^2 + Fn D xi - bending |M| = 0), in shear (|Fs| = xi D c + Fn tan(phi)), or by
 // D < xi_a D0.
 double min_bonded_length(const BondedLength& law, const BondSection& s, const BondStrength& b,
                          double d0);
 
-// vorodec's mapping of a sub-block joint onto the beam section: the joint is its bonded point
-// contacts (one at each end); D is the bonded length, at first the joint's length (the sum of the
-// contacts' lengths); A = D, I = D^3 / 12 and R = D / 2 as in the paper; Fn and Fs are the
-// contacts' sums and M their normal forces' moment about the length-weighted centre of their
-// points. Shrinking D to xi D at unchanged displacements gives the section F' = xi F, M' = xi^3 M
-// (shrink_pair); the contacts' springs and strengths scale by xi. Between corrosion steps the pair
-// turns on its two points' springs, xi jkn J (J = sum l_i (s_i - centre)^2, about D0^3 / 4), not
-// on the beam's xi^3 jkn D0^3 / 12: each step restores the beam's forces; the springs between
-// steps stay the contacts'.
+// vorodec's mapping of a sub-block joint onto the beam section. The joint is its bonded point
+// contacts (one at each end). D is the bonded length, at first the joint's length D0 (the sum of
+// the contacts' lengths), and A = D. Fn and Fs are the contacts' sums, M their normal forces'
+// moment about the length-weighted centre of their points. I and R are the pair's own at D0: I0 =
+// J = sum l_i (s_i - centre)^2 (about D0^3 / 4, where a continuous beam has D0^3 / 12) and R0 the
+// farthest point's distance, so bending = R0 D0^2 / J (about 2, not 6): at D0 the section's stress
+// is the larger of its contacts' stresses, and the corrosion stage's break check agrees with the
+// contacts' own tension cut-off. Shrinking D to xi D (I to xi^3 I, R to xi R) at unchanged
+// displacements gives F' = xi F, M' = xi^3 M (shrink_pair); the contacts' springs and strengths
+// scale by xi. The points do not move: between corrosion steps the pair turns on xi jkn J, where
+// the shrunk beam would have xi^3 jkn J; each step restores the beam's forces.
 struct PairSection {
   BondSection section{0, 0, 0, 0};
-  double centre = 0;  // m, along the joint
+  double centre = 0;   // m, along the joint
   double inertia = 0;  // m^3, sum of l_i (s_i - centre)^2: the pair's second moment of length
 };
 struct PairContact {
@@ -128,8 +135,8 @@ namespace detail {
 // int_a^b dv / rate(v), one 5-point Gauss-Legendre panel.
 template <class Rate>
 double gauss_panel(const Rate& rate, double a, double b) {
-  static constexpr double x[] = {0.0, -0.5384693101056831, 0.5384693101056831,
-                                 -0.9061798459386640, 0.9061798459386640};
+  static constexpr double x[] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                 0.9061798459386640};
   static constexpr double w[] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
                                  0.2369268850561891, 0.2369268850561891};
   const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
@@ -144,7 +151,8 @@ double held_time(const Rate& rate, double from, double to) {
   if (!(from > to)) return 0.0;
   const double h = (from - to) / held_panels;
   double t = 0.0;
-  for (int p = 0; p < held_panels; ++p) t += detail::gauss_panel(rate, to + p * h, to + (p + 1) * h);
+  for (int p = 0; p < held_panels; ++p)
+    t += detail::gauss_panel(rate, to + p * h, to + (p + 1) * h);
   return t;
 }
 // Where the value is after dt (s) from `from` on the same panels (at least `floor`): the panel the
