@@ -1,6 +1,8 @@
 // The analytic verification cases (A1-A8) as unit tests: each must meet its tolerance.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "case_assertions.hpp"
 #include "cases.hpp"
 
@@ -67,4 +69,16 @@ TEST(Verification, A11CorrodingContactFailsAtTheQuadratureTimeBothLayers) {
       const CaseResult r = a11_stress_corrosion(bonded_length, s, 4);
       EXPECT_TRUE(passes(r)) << r.name << " s " << s << ": " << r.measured << " vs " << r.expected;
     }
+}
+
+TEST(Verification, A11FrozenRateEstimateOverestimatesTheFailureTimeAtAboutFirstOrderInNc) {
+  const Ladder l = a11_frozen_ladder();
+  for (const auto& r : l.rungs) EXPECT_GT(r.value, l.reference_value) << "1/n_c " << r.parameter;
+  EXPECT_GT(l.order(), 0.6);
+  EXPECT_LT(l.order(), 1.2);
+}
+
+TEST(Verification, A11NoDegradationBelowTheActivationLevel) {
+  EXPECT_TRUE(std::isinf(a11_stepped(false, 0.3, 4, false)));
+  EXPECT_TRUE(passes(a11_stress_corrosion(false, 0.3, 4)));
 }

@@ -494,24 +494,26 @@ void read_corrosion(TomlSection sec, TomlSection& top, ModelConfig& cfg) {
       sec.fail(key,
                fmt::format("corrodes bonded mohr_coulomb joints; these have law '{}'", law.name));
   };
+  // A layer switched off keeps its keys (a batch case may switch it), required only when on.
+  const auto needed = [](bool on) { return on ? laws::required : 1.0; };
   if (c.transgranular) {
     bonded_law(g.transgranular, "transgranular");
     for (const auto& in : g.inside)
       if (in) bonded_law(*in, "transgranular");
-    c.bonded.beta2 = sec.positive("beta2", laws::required);
-    c.bonded.activation_stress = sec.non_negative("activation_stress", laws::required);
-    c.bonded.xi_a = sec.positive("min_length_ratio", 0.01);
-    if (c.bonded.xi_a >= 1) sec.fail("min_length_ratio", "must be < 1");
   }
+  c.bonded.beta2 = sec.positive("beta2", needed(c.transgranular));
+  c.bonded.activation_stress = sec.non_negative("activation_stress", needed(c.transgranular));
+  c.bonded.xi_a = sec.positive("min_length_ratio", 0.01);
+  if (c.bonded.xi_a >= 1) sec.fail("min_length_ratio", "must be < 1");
   if (c.intergranular) {
     bonded_law(g.intergranular, "intergranular");
     for (const auto& p : g.pairs) bonded_law(p.law, "intergranular");
-    c.degradation.beta4 = sec.positive("beta4", laws::required);
-    c.degradation.m_s = sec.non_negative("activation_level", laws::required);
-    if (c.degradation.m_s >= 1) sec.fail("activation_level", "must be < 1");
-    c.degradation.lambda_a = sec.positive("min_strength_factor", 0.01);
-    if (c.degradation.lambda_a >= 1) sec.fail("min_strength_factor", "must be < 1");
   }
+  c.degradation.beta4 = sec.positive("beta4", needed(c.intergranular));
+  c.degradation.m_s = sec.non_negative("activation_level", needed(c.intergranular) * 0.5);
+  if (c.degradation.m_s >= 1) sec.fail("activation_level", "must be < 1");
+  c.degradation.lambda_a = sec.positive("min_strength_factor", 0.01);
+  if (c.degradation.lambda_a >= 1) sec.fail("min_strength_factor", "must be < 1");
   sec.finish();
   cfg.corrosion = c;
 }

@@ -390,6 +390,7 @@ std::vector<Ladder> analytic_ladders() {
   }
   std::vector<Ladder> out{period, damping};
   for (Ladder& l : a10_ladders()) out.push_back(std::move(l));
+  out.push_back(a11_frozen_ladder());
   return out;
 }
 
@@ -410,6 +411,9 @@ std::vector<NamedCase> analytic_cases() {
           {"A8", a8_local_damping},
           {"A10", [] { return a10_burgers_creep(false); }},
           {"A10", [] { return a10_burgers_creep(true); }},
+          {"A11", [] { return a11_stress_corrosion(false, 0.7, 4); }},
+          {"A11", [] { return a11_stress_corrosion(true, 0.7, 4); }},
+          {"A11", [] { return a11_stress_corrosion(false, 0.3, 4); }},
           {"A13", a13_patch_test}};
 }
 

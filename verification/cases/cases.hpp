@@ -120,6 +120,9 @@ std::vector<Ladder> analytic_ladders();  // A3 period and A8 damping against the
 // A10 displacement against the time step, from the consistent start (second order) and from a
 // force stepped up from zero (first order).
 std::vector<Ladder> a10_ladders();
+// A11 with POT07's frozen-rate estimate: the failure time's error against n_c (strength
+// degradation, s = 0.7; the held integration is exact at any n_c).
+Ladder a11_frozen_ladder();
 // The default model (models/ucs_marble.toml), one thread: UCS and E against the platen speed and
 // against the density-scaling time step, each relative to its finest run. Minutes.
 std::vector<Ladder> model_ladders(const std::string& source_dir, const std::string& binary);

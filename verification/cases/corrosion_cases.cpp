@@ -93,4 +93,23 @@ CaseResult a11_stress_corrosion(bool bonded_length, double s, double n_c) {
   return c;
 }
 
+Ladder a11_frozen_ladder() {
+  Ladder l{
+      "A11 grain-boundary contact at s = 0.7, POT07's frozen-rate estimate: time to failure "
+      "against n_c",
+      "1 / n_c (steps_per_failure 1 ... 256)",
+      "time to failure (s)",
+      "quadrature t_f = 1 / beta3 int exp(-beta4 s / lambda) dlambda",
+      a11_quadrature(false, 0.7),
+      {}};
+  for (const double n_c : {1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0, 256.0}) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double t = a11_stepped(false, 0.7, n_c, true);
+    // The parameter runs the other way (more steps, less error): the ladder takes 1 / n_c.
+    l.rungs.push_back(
+        {1.0 / n_c, t, std::abs(t - l.reference_value) / l.reference_value, since(t0), n_c == 4.0});
+  }
+  return l;
+}
+
 }  // namespace vorodec::verification

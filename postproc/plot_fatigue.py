@@ -1,0 +1,127 @@
+#!/usr/bin/python3
+"""Static fatigue by stress corrosion from `vorodec batch models/batch_ldb_fatigue.toml` (or any
+batch of corrosion-stage runs): log10 time to failure against the driving-stress ratio, per
+confinement and per layer set, with paper 000's points; and the creep curves (axial strain against
+log corrosion time, one per case).
+
+Usage: postproc/plot_fatigue.py results/batch_ldb_fatigue [-o fatigue.png] [--curves curves.png]
+
+Reads every case folder's summary.json (corrosion_stages) and history.csv (rows labelled
+`<stage>:equilibrium`). A case's series is its folder name up to `_rs`: the name says which
+layers and confinement it runs (e.g. gsc_s3=0_rs0.8). Prints one row per case: series, rs,
+failure time (s, and log10), corrosion steps, mechanical steps per corrosion step. Needs Debian's
+/usr/bin/python3 with numpy and matplotlib.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from csvdata import read_columns  # noqa: E402
+
+# Paper 000 (Liu & Cai 2020): its GSC model's failure times, s (text of section 4.2 and Fig. 16).
+PAPER = {
+    "unconfined": [(0.6, 139 * 86400.0), (0.8, 3.4 * 60.0)],
+    "rs 0.8, s3 = 5 / 10 / 15 MPa": [(0.8, 5.0 * 60.0), (0.8, 15.5 * 60.0), (0.8, 39.1 * 60.0)],
+    "rs 0.6, s3 = 15 MPa": [(0.6, 11 * 365.25 * 86400.0)],
+}
+
+
+def lab_fit(rs):
+    """The paper's exponential fit of the LdB laboratory data (its Fig. 12): log10 t (s)."""
+    return 1118.2 * np.exp(-8.2277 * rs) + 0.70239
+
+
+def read_case(folder):
+    with open(os.path.join(folder, "summary.json")) as f:
+        summary = json.load(f)
+    stages = summary.get("corrosion_stages") or []
+    if not stages:
+        return None
+    st = stages[-1]
+    data = read_columns(os.path.join(folder, "history.csv"))
+    rows = [i for i, s in enumerate(data["stage"]) if s.endswith(":equilibrium")]
+    return {
+        "name": os.path.basename(folder.rstrip("/")),
+        "rs": st["driving_stress_ratio"],
+        "failure": st["failure_time_s"],
+        "steps": st["corrosion_steps"],
+        "per_step": st["mechanical_steps_per_corrosion_step"],
+        "t": data["corrosion_time"][rows],
+        "strain": data["axial_strain"][rows],
+    }
+
+
+def series(name):
+    return name.split("_rs")[0] if "_rs" in name else name
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("folder")
+    ap.add_argument("-o", "--output", default=None)
+    ap.add_argument("--curves", default=None)
+    a = ap.parse_args()
+    cases = []
+    for entry in sorted(os.listdir(a.folder)):
+        path = os.path.join(a.folder, entry)
+        if os.path.isfile(os.path.join(path, "summary.json")):
+            c = read_case(path)
+            if c:
+                cases.append(c)
+    if not cases:
+        sys.exit("%s: no corrosion-stage cases" % a.folder)
+    print("series,rs,failure_time_s,log10_failure_time,corrosion_steps,mechanical_per_corrosion")
+    for c in cases:
+        t = c["failure"]
+        print("%s,%.3g,%s,%s,%d,%.0f" % (series(c["name"]), c["rs"], t,
+                                         "%.3f" % math.log10(t) if t and t > 0 else "",
+                                         c["steps"], c["per_step"]))
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    rs = np.linspace(0.55, 1.0, 100)
+    ax.plot(rs, lab_fit(rs), "k:", lw=1, label="laboratory fit (paper 000, Fig. 12)")
+    for label, pts in PAPER.items():
+        ax.plot([p[0] for p in pts], [math.log10(p[1]) for p in pts], "s", mfc="none", ms=8,
+                label="paper 000 GSC: " + label)
+    groups = {}
+    for c in cases:
+        if c["failure"] and c["failure"] > 0:
+            groups.setdefault(series(c["name"]), []).append((c["rs"], math.log10(c["failure"])))
+    for name, pts in sorted(groups.items()):
+        pts.sort()
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label="vorodec " + name)
+    ax.set_xlabel("driving-stress ratio rs = (s1 - s3) / (sf - s3)")
+    ax.set_ylabel("log10 time to failure (s)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    out = a.output or os.path.join(a.folder, "fatigue.png")
+    fig.savefig(out, dpi=130)
+    print("wrote", out)
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    for c in cases:
+        keep = c["t"] > 0
+        if keep.any():
+            ax.semilogx(c["t"][keep], 100 * (c["strain"][keep] - c["strain"][0]),
+                        label="%s rs %.2f" % (series(c["name"]), c["rs"]))
+    ax.set_xlabel("corrosion time (s)")
+    ax.set_ylabel("creep strain: axial strain since the load was on (%)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6, ncol=2)
+    fig.tight_layout()
+    out = a.curves or os.path.join(a.folder, "fatigue_curves.png")
+    fig.savefig(out, dpi=130)
+    print("wrote", out)
+
+
+if __name__ == "__main__":
+    main()
