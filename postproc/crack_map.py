@@ -103,7 +103,7 @@ def draw(folder, frame, out, shade=None, by_class=False):
     if shade is None and not by_class:
         ax.add_collection(PolyCollection(polys, facecolors="0.85", edgecolors="0.45",
                                          linewidths=edge_lw))
-    else:
+    elif shade is not None:  # --by-class alone tints the blocks by mineral below
         values = cell_array(bpd, shade)
         if values is None or values.ndim != 1:
             raise ValueError("%s has no scalar block cell array %r" % (blocks_vtp, shade))

@@ -11,7 +11,7 @@ namespace vorodec::app {
 
 // A member added is either saved in CorrosionControl::serialize or comes from the model file;
 // then update these sizes.
-static_assert(sizeof(CorrosionControl) == 216, "CorrosionControl changed: see its serialize()");
+static_assert(sizeof(CorrosionControl) == 232, "CorrosionControl changed: see its serialize()");
 static_assert(sizeof(CorrosionStageReport) == 96,
               "CorrosionStageReport changed: it is saved as bytes");
 
@@ -89,12 +89,18 @@ CorrosionControl::Next CorrosionControl::after_step(solver::Solver& solver, mode
   if (since_equilibrium_ % cs.check_interval != 0) return Next::step;
   const double target = stage_.target_stress;
   const bool held = std::abs(s.axial_stress - target) <= 0.01 * target;
+  if (!started_) {  // loading: the limit counts from when the target is first held
+    if (held || held_at_ >= 0) held_at_ = std::max(held_at_, 0L) + cs.check_interval;
+    loading_peak_ = std::max(loading_peak_, s.axial_stress);
+    // Past its peak below the target: it cannot take the load at all.
+    if (loading_peak_ > 0.5 * target && s.axial_stress < 0.9 * loading_peak_) {
+      report_.failure_time = 0.0;
+      return Next::collapsed;
+    }
+  }
   if (!held || solver.unbalanced_force_ratio() >= cs.equilibrium_ratio) {
-    if (since_equilibrium_ < cs.max_equilibrium_steps) return Next::step;
-    if (started_)
-      report_.failure_time = report_.time;
-    else
-      report_.failure_time = 0.0;  // it could not take the load at all
+    if ((started_ ? since_equilibrium_ : held_at_) < cs.max_equilibrium_steps) return Next::step;
+    report_.failure_time = started_ ? report_.time : 0.0;
     return Next::collapsed;
   }
   since_equilibrium_ = 0;

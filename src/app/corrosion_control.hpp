@@ -52,7 +52,7 @@ class CorrosionControl {
   template <class Archive>
   void serialize(Archive& ar) {
     ar(checkpoint::pod(bonds_), checkpoint::pod(joints_), inter_begin_, clock_, since_equilibrium_,
-       cracks_seen_, broke_, started_, checkpoint::bytes(report_));
+       held_at_, loading_peak_, cracks_seen_, broke_, started_, checkpoint::bytes(report_));
   }
 
  private:
@@ -76,6 +76,8 @@ class CorrosionControl {
   std::size_t inter_begin_ = 0;
   CorrosionClock clock_;
   long since_equilibrium_ = 0;  // solver steps since the last equilibrium
+  long held_at_ = -1;           // loading: steps since the target was first held (-1: not yet)
+  double loading_peak_ = 0;     // Pa, the highest stress while loading
   std::size_t cracks_seen_ = 0;
   bool broke_ = false;    // the last corrosion step broke a bond
   bool started_ = false;  // the first equilibrium (at the held stress) was reached

@@ -14,7 +14,7 @@ namespace vorodec::app {
 // A member added to the driver is either state a checkpoint carries (save and load it in
 // QuasiStaticDriver::state) or comes again from the model file or the loaded state (say so there);
 // then update these sizes.
-static_assert(sizeof(QuasiStaticDriver) == 1024, "QuasiStaticDriver changed: see state()");
+static_assert(sizeof(QuasiStaticDriver) == 1040, "QuasiStaticDriver changed: see state()");
 static_assert(sizeof(DriverOutcome) == 264, "DriverOutcome changed: see state()");
 static_assert(sizeof(loading::StageControl) == 104, "StageControl changed: see its serialize()");
 

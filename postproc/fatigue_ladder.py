@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""Error against run time of the static-fatigue stage: failure time at rs 0.7 and 0.8 against n_c
+(steps_per_failure) and against the equilibrium limit, from `vorodec batch
+models/batch_ldb_fatigue_ladder.toml` plus the default cases (gsc_s3=0_rs0.7, gsc_s3=0_rs0.8) of
+`vorodec batch models/batch_ldb_fatigue.toml`.
+
+Usage: postproc/fatigue_ladder.py LADDER_FOLDER FATIGUE_FOLDER [-o out_prefix]
+
+Each ladder's reference is its finest rung (n_c 16, equilibrium 2.5e-5); error = |t - t_ref| /
+t_ref; observed order = least-squares slope of log error against log parameter (1/n_c, or the
+limit). Writes <prefix>_<ladder>.csv (parameter,value,error,seconds,default,order: the input of
+verification/plot_cost_accuracy.py) and prints each ladder as a Markdown table. Needs Debian's
+/usr/bin/python3 with numpy.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+
+import numpy as np
+
+
+def case(folder):
+    with open(os.path.join(folder, "summary.json")) as f:
+        s = json.load(f)
+    st = (s.get("corrosion_stages") or [{}])[-1]
+    return st.get("failure_time_s"), s["wall_time_s"]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("ladder")
+    ap.add_argument("fatigue")
+    ap.add_argument("-o", "--out", default="fatigue_ladder")
+    a = ap.parse_args()
+    for rs in ("0.7", "0.8"):
+        default = case(os.path.join(a.fatigue, "gsc_s3=0_rs" + rs))
+        for kind, rungs, finest in (("nc", [(1, "nc1"), (4, None), (16, "nc16")], 16),
+                                    ("eq", [(4e-4, "eq4e-4"), (1e-4, None), (2.5e-5, "eq2.5e-5")],
+                                     2.5e-5)):
+            pts = []
+            for value, name in rungs:
+                t, wall = default if name is None else case(
+                    os.path.join(a.ladder, "rs%s_%s" % (rs, name)))
+                param = 1.0 / value if kind == "nc" else value
+                pts.append((param, t, wall, name is None, value == finest))
+            ref = [p[1] for p in pts if p[4]][0]
+            rows = [(p[0], p[1], abs(p[1] - ref) / ref if p[1] and ref else float("nan"), p[2], p[3])
+                    for p in pts]
+            fit = [(math.log(r[0]), math.log(r[2])) for r in rows if r[2] and r[2] > 0]
+            order = np.polyfit(*zip(*fit), 1)[0] if len(fit) >= 2 else float("nan")
+            path = "%s_rs%s_%s.csv" % (a.out, rs, kind)
+            with open(path, "w", newline="") as f:
+                w = csv.writer(f)
+                w.writerow(["parameter", "value", "error", "seconds", "default", "order"])
+                for r in rows:
+                    w.writerow([r[0], r[1], r[2], r[3], int(r[4]), order])
+            label = "1 / n_c" if kind == "nc" else "equilibrium ratio"
+            print("\n### Static fatigue, rs %s: failure time against %s\n" % (rs, label))
+            print("Reference: the finest rung, %.6g s. Observed order: %.2f.\n" % (ref, order))
+            print("| %s | failure time (s) | error | wall time |\n|---|---|---|---|" % label)
+            for r in rows:
+                print("| %g%s | %.6g | %.3g | %.0f s |" % (r[0], " *" if r[4] else "", r[1], r[2],
+                                                          r[3]))
+            print("\n(csv: %s)" % path)
+
+
+if __name__ == "__main__":
+    main()
