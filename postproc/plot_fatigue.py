@@ -5,6 +5,10 @@ confinement and per layer set, with paper 000's points; and the creep curves (ax
 log corrosion time, one per case).
 
 Usage: postproc/plot_fatigue.py results/batch_ldb_fatigue [-o fatigue.png] [--curves curves.png]
+       [--report]
+
+--report prints the B3 rows of verification/REPORT.md: each paper 000 failure time against the
+case that matches it, error = |log10 t - log10 t_paper| (orders of magnitude), tolerance 1.
 
 Reads every case folder's summary.json (corrosion_stages) and history.csv (rows labelled
 `<stage>:equilibrium`). A case's series is its folder name up to `_rs`: the name says which
@@ -59,6 +63,62 @@ def read_case(folder):
     }
 
 
+def report(cases):
+    by = {c["name"]: c for c in cases}
+
+    def log_t(name):
+        c = by.get(name)
+        return math.log10(c["failure"]) if c and c["failure"] and c["failure"] > 0 else None
+
+    def outcome(name):
+        """The case's log10 t_f as text, or why it has none."""
+        c = by.get(name)
+        if c is None:
+            return "not run"
+        if c["failure"] is None:
+            return "no failure (corrosion arrested after %d steps)" % c["steps"]
+        if c["failure"] <= 0:
+            return "-inf (failed as loaded)"
+        return "%.3f" % math.log10(c["failure"])
+
+    def row(check, reference, expected_s, name, note=""):
+        got = log_t(name)
+        exp = math.log10(expected_s)
+        err = abs(got - exp) if got is not None else float("inf")
+        ok = "info" if note else ("yes" if err <= 1.0 else "**no**")
+        print("| B3 | %s | %s | %.3f | %s | %.2f | 1 | %s | %s%s |" % (
+            check, reference, exp, outcome(name), err, ok, name, note))
+
+    paper = "paper 000, section 4.2 / Fig. 16 (GSC model)"
+    row("log10 time to failure (s), rs 0.6, unconfined", paper, 139 * 86400.0, "gsc_s3=0_rs0.6")
+    row("log10 time to failure (s), rs 0.8, unconfined", paper, 3.4 * 60, "gsc_s3=0_rs0.8",
+        " (the rate constants were scaled to fit this point)")
+    for s3, minutes in ((5, 5.0), (10, 15.5), (15, 39.1)):
+        row("log10 time to failure (s), rs 0.8, s3 = %d MPa" % s3, paper, minutes * 60,
+            "gsc_s3=%d_rs0.8" % s3)
+    row("log10 time to failure (s), rs 0.6, s3 = 15 MPa", paper, 11 * 365.25 * 86400.0,
+        "gsc_s3=15_rs0.6")
+    lo, hi = log_t("gsc_s3=0_rs0.6"), log_t("gsc_s3=0_rs0.95")
+    span = (lo - hi) if lo is not None and hi is not None else float("nan")
+    print("| B3 | orders of magnitude of t_f from rs 0.6 to 0.95, unconfined | %s: about 6 | 6 | "
+          "%s | %.2f | 1 | %s | gsc_s3=0_rs0.6 .. rs0.95 |" % (
+              paper, "%.2f" % span if span == span else "n/a",
+              abs(span - 6) if span == span else float("inf"),
+              "yes" if span == span and abs(span - 6) <= 1 else "**no**"))
+    seq = [log_t("gsc_s3=0_rs%g" % r) for r in (0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95)]
+    known = [x for x in seq if x is not None]
+    mono = len(known) == len(seq) and all(a > b for a, b in zip(known, known[1:]))
+    print("| B3 | log10 t_f falls monotonically with rs (0.6-0.95, unconfined) | %s | - | %s | - | - "
+          "| %s | %d of 8 cases failed after a finite time |" % (
+              paper, "monotone" if mono else "not monotone", "yes" if mono else "**no**",
+              len(known)))
+    for r in (0.6, 0.7, 0.8, 0.9):
+        print("| B3 | intra-grain layer alone (PSC), rs %g, unconfined: log10 t_f | paper 000 Fig. 12 "
+              "(POT07's PSC): fails, sooner than GSC below rs 0.65 | - | %s | - | - | info | "
+              "psc_s3=0_rs%g (GSC: %s) |" % (r, outcome("psc_s3=0_rs%g" % r), r,
+                                             outcome("gsc_s3=0_rs%g" % r)))
+
+
 def series(name):
     return name.split("_rs")[0] if "_rs" in name else name
 
@@ -68,6 +128,7 @@ def main():
     ap.add_argument("folder")
     ap.add_argument("-o", "--output", default=None)
     ap.add_argument("--curves", default=None)
+    ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
     cases = []
     for entry in sorted(os.listdir(a.folder)):
@@ -84,6 +145,9 @@ def main():
         print("%s,%.3g,%s,%s,%d,%.0f" % (series(c["name"]), c["rs"], t,
                                          "%.3f" % math.log10(t) if t and t > 0 else "",
                                          c["steps"], c["per_step"]))
+
+    if a.report:
+        report(cases)
 
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     rs = np.linspace(0.55, 1.0, 100)

@@ -49,15 +49,15 @@ std::string report_row(const CaseResult& r) {
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(
-        stderr,
-        "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
-        "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only]\n",
-        argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
+                 "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only] "
+                 "[--corrosion-only]\n",
+                 argv[0]);
     return 2;
   }
   bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false,
-       grains_only = false, speeds_only = false, creep_only = false;
+       grains_only = false, speeds_only = false, creep_only = false, corrosion_only = false;
   for (int i = 4; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--analytic-only") {
@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
       speeds_only = true;
     } else if (flag == "--creep-only") {
       creep_only = true;
+    } else if (flag == "--corrosion-only") {
+      corrosion_only = true;
     } else {
       std::fprintf(stderr, "unknown option '%s'\n", argv[i]);
       return 2;
@@ -86,6 +88,26 @@ int main(int argc, char** argv) {
     write_speed_runs(out, runs);
     std::fprintf(stderr, "report: %s\n", argv[3]);
     return 0;
+  }
+  if (corrosion_only) {  // A11 and its frozen-rate ladder (in-process, under a second)
+    std::ofstream out(argv[3]);
+    out << "# vorodec verification report: stress corrosion (A11) only\n\n"
+        << fmt::format("Generated {} on {} ({} cores) by `vorodec_verify --corrosion-only`.\n\n",
+                       utc_now(), host_name(), sysconf(_SC_NPROCESSORS_ONLN))
+        << "| case | check | reference | expected | result | error | tolerance | pass | wall time "
+           "| settings |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    int failed = 0, rows = 0;
+    for (const bool bonded_length : {false, true})
+      for (const double s : {0.3, 0.5, 0.7, 0.9}) {
+        const CaseResult r = a11_stress_corrosion(bonded_length, s, 4);
+        failed += !r.pass();
+        ++rows;
+        out << report_row(r);
+      }
+    write_ladders(out, {a11_frozen_ladder()}, {}, std::filesystem::path(argv[3]).parent_path(),
+                  argv[1]);
+    std::fprintf(stderr, "%d of %d checks failed; report: %s\n", failed, rows, argv[3]);
+    return failed ? 1 : 0;
   }
   if (creep_only) {
     const CreepVerification b4 = b4_sandstone(argv[1], argv[2]);
