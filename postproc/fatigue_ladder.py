@@ -22,6 +22,9 @@ import numpy as np
 
 
 def case(folder):
+    """Failure time (s) and wall time (s) of a finished case; None if it has not finished."""
+    if not os.path.isfile(os.path.join(folder, "summary.json")):
+        return None
     with open(os.path.join(folder, "summary.json")) as f:
         s = json.load(f)
     st = (s.get("corrosion_stages") or [{}])[-1]
@@ -41,10 +44,17 @@ def main():
                                      2.5e-5)):
             pts = []
             for value, name in rungs:
-                t, wall = default if name is None else case(
+                got = default if name is None else case(
                     os.path.join(a.ladder, "rs%s_%s" % (rs, name)))
+                if got is None or got[0] is None:
+                    continue
                 param = 1.0 / value if kind == "nc" else value
-                pts.append((param, t, wall, name is None, value == finest))
+                pts.append((param, got[0], got[1], name is None, value == finest))
+            label = "1 / n_c" if kind == "nc" else "equilibrium ratio"
+            if not any(p[4] for p in pts):
+                print("\n### Static fatigue, rs %s: failure time against %s\n\nNot finished "
+                      "(its finest rung has no failure time).\n" % (rs, label))
+                continue
             ref = [p[1] for p in pts if p[4]][0]
             rows = [(p[0], p[1], abs(p[1] - ref) / ref if p[1] and ref else float("nan"), p[2], p[3])
                     for p in pts]
@@ -56,7 +66,6 @@ def main():
                 w.writerow(["parameter", "value", "error", "seconds", "default", "order"])
                 for r in rows:
                     w.writerow([r[0], r[1], r[2], r[3], int(r[4]), order])
-            label = "1 / n_c" if kind == "nc" else "equilibrium ratio"
             print("\n### Static fatigue, rs %s: failure time against %s\n" % (rs, label))
             print("Reference: the finest rung, %.6g s. Observed order: %.2f.\n" % (ref, order))
             print("| %s | failure time (s) | error | wall time |\n|---|---|---|---|" % label)

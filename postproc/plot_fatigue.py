@@ -58,6 +58,7 @@ def read_case(folder):
         "failure": st["failure_time_s"],
         "steps": st["corrosion_steps"],
         "per_step": st["mechanical_steps_per_corrosion_step"],
+        "wall": summary.get("wall_time_s", float("nan")),
         "t": data["corrosion_time"][rows],
         "strain": data["axial_strain"][rows],
     }
@@ -81,13 +82,17 @@ def report(cases):
             return "-inf (failed as loaded)"
         return "%.3f" % math.log10(c["failure"])
 
+    def wall(name):
+        c = by.get(name)
+        return "%.0f s" % c["wall"] if c else "-"
+
     def row(check, reference, expected_s, name, note=""):
         got = log_t(name)
         exp = math.log10(expected_s)
         err = abs(got - exp) if got is not None else float("inf")
         ok = "info" if note else ("yes" if err <= 1.0 else "**no**")
-        print("| B3 | %s | %s | %.3f | %s | %.2f | 1 | %s | %s%s |" % (
-            check, reference, exp, outcome(name), err, ok, name, note))
+        print("| B3 | %s | %s | %.3f | %s | %.2f | 1 | %s | %s | %s%s |" % (
+            check, reference, exp, outcome(name), err, ok, wall(name), name, note))
 
     paper = "paper 000, section 4.2 / Fig. 16 (GSC model)"
     row("log10 time to failure (s), rs 0.6, unconfined", paper, 139 * 86400.0, "gsc_s3=0_rs0.6")
@@ -101,7 +106,7 @@ def report(cases):
     lo, hi = log_t("gsc_s3=0_rs0.6"), log_t("gsc_s3=0_rs0.95")
     span = (lo - hi) if lo is not None and hi is not None else float("nan")
     print("| B3 | orders of magnitude of t_f from rs 0.6 to 0.95, unconfined | %s: about 6 | 6 | "
-          "%s | %.2f | 1 | %s | gsc_s3=0_rs0.6 .. rs0.95 |" % (
+          "%s | %.2f | 1 | %s | 8 runs | gsc_s3=0_rs0.6 .. rs0.95 |" % (
               paper, "%.2f" % span if span == span else "n/a",
               abs(span - 6) if span == span else float("inf"),
               "yes" if span == span and abs(span - 6) <= 1 else "**no**"))
@@ -109,13 +114,14 @@ def report(cases):
     known = [x for x in seq if x is not None]
     mono = len(known) == len(seq) and all(a > b for a, b in zip(known, known[1:]))
     print("| B3 | log10 t_f falls monotonically with rs (0.6-0.95, unconfined) | %s | - | %s | - | - "
-          "| %s | %d of 8 cases failed after a finite time |" % (
+          "| %s | 8 runs | %d of 8 cases failed after a finite time |" % (
               paper, "monotone" if mono else "not monotone", "yes" if mono else "**no**",
               len(known)))
     for r in (0.6, 0.7, 0.8, 0.9):
         print("| B3 | intra-grain layer alone (PSC), rs %g, unconfined: log10 t_f | paper 000 Fig. 12 "
-              "(POT07's PSC): fails, sooner than GSC below rs 0.65 | - | %s | - | - | info | "
-              "psc_s3=0_rs%g (GSC: %s) |" % (r, outcome("psc_s3=0_rs%g" % r), r,
+              "(POT07's PSC): fails, sooner than GSC below rs 0.65 | - | %s | - | - | info | %s | "
+              "psc_s3=0_rs%g (GSC: %s) |" % (r, outcome("psc_s3=0_rs%g" % r),
+                                             wall("psc_s3=0_rs%g" % r), r,
                                              outcome("gsc_s3=0_rs%g" % r)))
 
 
