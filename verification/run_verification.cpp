@@ -47,6 +47,15 @@ std::string report_row(const CaseResult& r) {
                      r.seconds, r.settings);
 }
 
+// A report of one flag's cases: its title, when and where it ran, and the cases' table head.
+void write_table_head(std::ostream& out, const char* what, const char* flag) {
+  out << fmt::format("# vorodec verification report: {} only\n\n", what)
+      << fmt::format("Generated {} on {} ({} cores) by `vorodec_verify {}`.\n\n", utc_now(),
+                     host_name(), sysconf(_SC_NPROCESSORS_ONLN), flag)
+      << "| case | check | reference | expected | result | error | tolerance | pass | wall time "
+         "| settings |\n|---|---|---|---|---|---|---|---|---|---|\n";
+}
+
 int main(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr,
@@ -91,11 +100,7 @@ int main(int argc, char** argv) {
   }
   if (corrosion_only) {  // A11 and its frozen-rate ladder (in-process, under a second)
     std::ofstream out(argv[3]);
-    out << "# vorodec verification report: stress corrosion (A11) only\n\n"
-        << fmt::format("Generated {} on {} ({} cores) by `vorodec_verify --corrosion-only`.\n\n",
-                       utc_now(), host_name(), sysconf(_SC_NPROCESSORS_ONLN))
-        << "| case | check | reference | expected | result | error | tolerance | pass | wall time "
-           "| settings |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    write_table_head(out, "stress corrosion (A11)", "--corrosion-only");
     int failed = 0, rows = 0;
     for (const bool bonded_length : {false, true})
       for (const double s : {0.3, 0.5, 0.7, 0.9}) {
@@ -112,11 +117,7 @@ int main(int argc, char** argv) {
   if (creep_only) {
     const CreepVerification b4 = b4_sandstone(argv[1], argv[2]);
     std::ofstream out(argv[3]);
-    out << "# vorodec verification report: Burger's creep (B4) only\n\n"
-        << fmt::format("Generated {} on {} ({} cores) by `vorodec_verify --creep-only`.\n\n",
-                       utc_now(), host_name(), sysconf(_SC_NPROCESSORS_ONLN))
-        << "| case | check | reference | expected | result | error | tolerance | pass | wall time "
-           "| settings |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    write_table_head(out, "Burger's creep (B4)", "--creep-only");
     int failed = 0;
     for (const auto& r : b4.rows) {
       failed += !r.pass();

@@ -78,7 +78,6 @@ CorrosionControl::CorrosionControl(const loading::Stage& stage, const io::Corros
       j.d0 += contacts[index.at(bonds_[k].id)].length;
     j.d = j.d0;
   }
-  report_.mechanical_steps = 0;
 }
 
 CorrosionControl::Next CorrosionControl::after_step(solver::Solver& solver, model::Model& model,

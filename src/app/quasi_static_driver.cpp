@@ -276,6 +276,22 @@ ProgressReport QuasiStaticDriver::progress() const {
   return r;
 }
 
+namespace {
+// A (stage index, report) list through an archive, as two plain vectors.
+template <class Archive, class Report>
+void stage_reports(Archive& ar, std::vector<std::pair<std::size_t, Report>>& list) {
+  std::vector<std::size_t> stages;
+  std::vector<Report> reports;
+  for (const auto& [i, r] : list) {
+    stages.push_back(i);
+    reports.push_back(r);
+  }
+  ar(checkpoint::pod(stages), checkpoint::pod(reports));
+  list.clear();
+  for (std::size_t k = 0; k < stages.size(); ++k) list.emplace_back(stages[k], reports[k]);
+}
+}  // namespace
+
 template <class Archive>
 void QuasiStaticDriver::state(Archive& ar) {
   using checkpoint::pod;
@@ -304,26 +320,8 @@ void QuasiStaticDriver::state(Archive& ar) {
     if (corrosion) corrosion_.emplace(stage(), *cfg_.corrosion);  // its state follows
   }
   if (corrosion) ar(*corrosion_);
-  std::vector<std::size_t> corrosion_stages;
-  std::vector<CorrosionStageReport> corrosion_reports;
-  for (const auto& [i, r] : outcome_.corrosion) {
-    corrosion_stages.push_back(i);
-    corrosion_reports.push_back(r);
-  }
-  ar(pod(corrosion_stages), pod(corrosion_reports));
-  outcome_.corrosion.clear();
-  for (std::size_t k = 0; k < corrosion_stages.size(); ++k)
-    outcome_.corrosion.emplace_back(corrosion_stages[k], corrosion_reports[k]);
-  std::vector<std::size_t> creep_stages;
-  std::vector<CreepStageReport> creep_reports;
-  for (const auto& [i, r] : outcome_.creep) {
-    creep_stages.push_back(i);
-    creep_reports.push_back(r);
-  }
-  ar(pod(creep_stages), pod(creep_reports));
-  outcome_.creep.clear();
-  for (std::size_t k = 0; k < creep_stages.size(); ++k)
-    outcome_.creep.emplace_back(creep_stages[k], creep_reports[k]);
+  stage_reports(ar, outcome_.corrosion);
+  stage_reports(ar, outcome_.creep);
   ar(pod(good_x_), pod(good_y_), pod(good_t_), pod(good_gx_), pod(good_gy_), resume_at_, stop_);
   ar(outcome_.exit_code, outcome_.status, outcome_.peak, outcome_.trough, pod(stalled),
      outcome_.implicit_start);
