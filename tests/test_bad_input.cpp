@@ -478,3 +478,27 @@ TEST(BadInput, FewerThanOneCorrosionStepPerFailureIsRejected) {
       rejected("corrosion_nc", replace(m, "steps_per_failure = 4", "steps_per_failure = 0.5"),
                "stage[0].steps_per_failure", line_of(m, "steps_per_failure"), "n_c must be >= 1"));
 }
+
+TEST(BadInput, QuietBoundaryModelPassesCheck) {
+  const std::string text =
+      replace(good_model, "[[stage]]",
+              "[quiet_boundary]\nsides = [\"left\", \"right\"]\ninput_side = \"top\"\n"
+              "input_velocity = 0.1\ninput_duration = 1e-5\n[[stage]]");
+  const Outcome o = run_capture("check " + write_model("quiet_good", text).string());
+  EXPECT_EQ(o.code, 0) << o.output;
+}
+
+TEST(BadInput, QuietBoundaryOnAMisspelledSideIsRejected) {
+  const std::string text = replace(good_model, "[[stage]]",
+                                   "[quiet_boundary]\nsides = [\"left\", \"rihgt\"]\n[[stage]]");
+  EXPECT_TRUE(rejected("quiet_side", text, "quiet_boundary.sides", line_of(text, "rihgt"),
+                       "'rihgt' is not a side"));
+}
+
+TEST(BadInput, QuietBoundaryInputSideAmongTheAbsorbingSidesIsRejected) {
+  const std::string text = replace(good_model, "[[stage]]",
+                                   "[quiet_boundary]\nsides = [\"left\"]\ninput_side = \"left\"\n"
+                                   "input_velocity = 0.1\ninput_duration = 1e-5\n[[stage]]");
+  EXPECT_TRUE(rejected("quiet_input_twice", text, "quiet_boundary.input_side",
+                       line_of(text, "input_side"), "absorbs as well"));
+}

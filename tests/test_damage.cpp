@@ -44,7 +44,7 @@ CrackEvent crack(double deg, double length, ContactEvent type, double x = 0.5 * 
                  double y = 0.5 * a, int block_a = 0, int block_b = 1) {
   const double r = deg * M_PI / 180.0;
   // Normal perpendicular to the line direction (cos r, sin r).
-  return {0.0, x, y, std::sin(r), -std::cos(r), length, block_a, block_b, type};
+  return {0.0, x, y, std::sin(r), -std::cos(r), length, block_a, block_b, type, 0.0};
 }
 
 }  // namespace

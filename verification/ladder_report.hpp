@@ -51,8 +51,34 @@ inline void write_ladders(std::ostream& out, const std::vector<Ladder>& analytic
   if (std::system(cmd.c_str()) == 0) out << "\n![convergence ladders](ladders.png)\n";
 }
 
+// <stem>.csv and, by verification/plot_cost_accuracy.py, <stem>.png: the ladder's error against
+// wall time. True if the plot was drawn.
+inline bool cost_accuracy_plot(const Ladder& l, const std::filesystem::path& dir,
+                               const std::string& source_dir, const std::string& stem) {
+  std::ofstream csv(dir / (stem + ".csv"));
+  csv << "parameter,value,error,seconds,default,order\n";
+  for (const LadderRung& r : l.rungs)
+    csv << fmt::format("{:.9g},{:.9g},{:.6g},{:.3f},{},{:.4g}\n", r.parameter, r.value, r.error,
+                       r.seconds, r.is_default ? 1 : 0, l.order());
+  csv.close();
+  const std::string cmd = fmt::format(
+      "/usr/bin/python3 {} {} {} '{}'",
+      (std::filesystem::path(source_dir) / "verification/plot_cost_accuracy.py").string(),
+      (dir / (stem + ".csv")).string(), (dir / (stem + ".png")).string(), l.name);
+  return std::system(cmd.c_str()) == 0;
+}
+
+// The observed order where the errors fall monotonically as the setting is refined, else "no
+// trend" (an order fitted through points that rise and fall says nothing).
+inline std::string order_text(const Ladder& l) {
+  for (std::size_t i = 1; i < l.rungs.size(); ++i)
+    if (!(l.rungs[i].error < l.rungs[i - 1].error))
+      return "no trend (the errors do not fall monotonically)";
+  return fmt::format("{:.2f}", l.order());
+}
+
 // A whole-model ladder as error against wall time (a cost-accuracy table and plot,
-// creep_ladder.csv / creep_ladder.png by verification/plot_cost_accuracy.py).
+// creep_ladder.csv / creep_ladder.png).
 inline void write_creep_ladder(std::ostream& out, const Ladder& l, const std::filesystem::path& dir,
                                const std::string& source_dir) {
   out << fmt::format(
@@ -60,20 +86,11 @@ inline void write_creep_ladder(std::ostream& out, const Ladder& l, const std::fi
       "{:.2f}. `*` marks the default.\n\n| {} | {} | error | wall time |\n"
       "|---|---|---|---|\n",
       l.name, l.reference, l.reference_value, l.order(), l.parameter, l.quantity);
-  std::ofstream csv(dir / "creep_ladder.csv");
-  csv << "parameter,value,error,seconds,default,order\n";
-  for (const LadderRung& r : l.rungs) {
+  for (const LadderRung& r : l.rungs)
     out << fmt::format("| {:.4g}{} | {:.6g} | {:.3g} | {:.1f} s |\n", r.parameter,
                        r.is_default ? " *" : "", r.value, r.error, r.seconds);
-    csv << fmt::format("{:.9g},{:.9g},{:.6g},{:.3f},{},{:.4g}\n", r.parameter, r.value, r.error,
-                       r.seconds, r.is_default ? 1 : 0, l.order());
-  }
-  csv.close();
-  const std::string cmd = fmt::format(
-      "/usr/bin/python3 {} {} {} '{}'",
-      (std::filesystem::path(source_dir) / "verification/plot_cost_accuracy.py").string(),
-      (dir / "creep_ladder.csv").string(), (dir / "creep_ladder.png").string(), l.name);
-  if (std::system(cmd.c_str()) == 0) out << "\n![error against run time](creep_ladder.png)\n";
+  if (cost_accuracy_plot(l, dir, source_dir, "creep_ladder"))
+    out << "\n![error against run time](creep_ladder.png)\n";
 }
 
 // The error-vs-run-time table of the quasi-static speed-ups (issue 7): fixed and adaptive platen

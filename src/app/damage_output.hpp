@@ -24,6 +24,7 @@ class DamageOutput {
 
   static std::vector<std::string> rose_header();
   double grid_cell() const { return cell_; }
+  double mean_block_size() const { return base_.mean_block_size; }  // m
 
  private:
   measure::DamageBaseline base_;

@@ -1,5 +1,6 @@
 #include "observers.hpp"
 
+#include "ae_output.hpp"
 #include "vorodec/checkpoint/archive_io.hpp"
 #include "vorodec/measure/grain_cracks.hpp"
 #include "vorodec/model/contact_geometry.hpp"
@@ -278,15 +279,33 @@ class FrameObserver final : public Observer {
   std::unique_ptr<io::VtkSeriesWriter> vtk_;
 };
 
+// ae_events.csv and .vtp: the events of every crack so far, rewritten whole at each flush (a
+// checkpoint and the end), as they follow from the crack list alone.
+class AeObserver final : public Observer {
+ public:
+  AeObserver(const RunView& v, const measure::AeSettings& s, std::filesystem::path out)
+      : view_(v), settings_(s), out_(std::move(out)) {}
+  void flush() override {
+    write_ae_events(measure::cluster_events(view_.solver.cracks(), settings_), out_);
+  }
+  void save(checkpoint::OutArchive&) const override {}
+
+ private:
+  const RunView& view_;
+  measure::AeSettings settings_;
+  std::filesystem::path out_;
+};
+
 }  // namespace
 
 Observers make_observers(const RunView& view, const DamageOutput& damage,
-                         const std::filesystem::path& out, bool write_vtk, Curve& curve,
-                         checkpoint::InArchive* resume) {
+                         const measure::AeSettings& ae, const std::filesystem::path& out,
+                         bool write_vtk, Curve& curve, checkpoint::InArchive* resume) {
   Observers o;
   o.add(std::make_unique<HistoryObserver>(view, damage, out, curve, resume));
   o.add(std::make_unique<CrackObserver>(view, out, resume));
   o.add(std::make_unique<FrameObserver>(damage, out, write_vtk, resume));
+  o.add(std::make_unique<AeObserver>(view, ae, out));
   return o;
 }
 

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "implicit_start.hpp"
 #include "observers.hpp"
@@ -14,9 +16,52 @@ namespace vorodec::app {
 // A member added to the driver is either state a checkpoint carries (save and load it in
 // QuasiStaticDriver::state) or comes again from the model file or the loaded state (say so there);
 // then update these sizes.
-static_assert(sizeof(QuasiStaticDriver) == 1040, "QuasiStaticDriver changed: see state()");
+static_assert(sizeof(QuasiStaticDriver) == 1152, "QuasiStaticDriver changed: see state()");
 static_assert(sizeof(DriverOutcome) == 264, "DriverOutcome changed: see state()");
 static_assert(sizeof(loading::StageControl) == 104, "StageControl changed: see its serialize()");
+
+namespace {
+
+// m, sqrt(specimen area / specimen blocks), the areas from the block polygons.
+double mean_block_size(const model::Model& m) {
+  const auto& bl = m.blocks;
+  double area = 0;
+  std::size_t n = 0;
+  for (std::uint32_t b = 0; b < bl.size(); ++b) {
+    if (bl.group[b] != model::Group::specimen) continue;
+    ++n;
+    for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c)
+      area += 0.5 * cross(bl.corner[c], bl.corner[bl.next_corner(b, c)]);
+  }
+  return n ? std::sqrt(area / static_cast<double>(n)) : 0.0;
+}
+
+loading::QuietBoundary make_quiet_boundary(const io::QuietBoundaryConfig& q,
+                                           const io::ModelConfig& cfg, const model::Model& m) {
+  const double d = mean_block_size(m);
+  const auto speed = [&](double given, const char* key) {
+    const auto k = cfg.joints.params.find(key);
+    return given > 0 ? given : std::sqrt(k->second.mean() * d / cfg.density);
+  };
+  std::vector<loading::BoundaryEdge> edges;
+  for (const loading::Side s : q.sides) {
+    const auto e = loading::outline_edges(m, s);
+    edges.insert(edges.end(), e.begin(), e.end());
+  }
+  loading::QuietBoundary quiet(
+      edges, {cfg.density, speed(q.p_wave_speed, "jkn"), speed(q.s_wave_speed, "jks")});
+  if (q.input_side) {
+    const double v = q.input_velocity, duration = q.input_duration;
+    const bool shear = q.input_shear;
+    quiet.set_input(loading::outline_edges(m, *q.input_side), [=](double t) {
+      const double u = t < duration ? v * std::sin(std::numbers::pi * t / duration) : 0.0;
+      return shear ? loading::InputVelocity{0.0, u} : loading::InputVelocity{u, 0.0};
+    });
+  }
+  return quiet;
+}
+
+}  // namespace
 
 QuasiStaticDriver::QuasiStaticDriver(const io::ModelConfig& cfg, model::Model& model,
                                      solver::Solver& solver,
@@ -33,6 +78,7 @@ QuasiStaticDriver::QuasiStaticDriver(const io::ModelConfig& cfg, model::Model& m
       state_(measure::measure_specimen(model, boundary, solver)) {
   outcome_.stalled.assign(cfg.load_path.stages.size(), false);
   if (cfg.load_path.stages.empty()) phase_ = Phase::done;
+  if (cfg.quiet_boundary) quiet_.emplace(make_quiet_boundary(*cfg.quiet_boundary, cfg, model));
 }
 
 RunView QuasiStaticDriver::view() const {
@@ -139,7 +185,9 @@ void QuasiStaticDriver::step(Observers& observers) {
       solver_.contact_stiffness_on(static_cast<std::size_t>(boundary_.top_platen())), solver_.dt(),
       boundary_.width());
   boundary_.set_platen_velocity(model_, v_);
+  if (quiet_) quiet_->clear_loads(model_);
   boundary_.apply_confinement(model_, cfg_.load_path.confining_stress);
+  if (quiet_) quiet_->apply(model_, solver_.time());
   solver_.step();
   state_ = measure::measure_specimen(model_, boundary_, solver_);
   if (solver_.steps() % 100 == 0) {

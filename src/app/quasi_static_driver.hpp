@@ -9,6 +9,7 @@
 #include "driver.hpp"
 #include "vorodec/io/model_file.hpp"
 #include "vorodec/loading/boundary.hpp"
+#include "vorodec/loading/quiet_boundary.hpp"
 #include "vorodec/loading/stage_control.hpp"
 
 namespace vorodec::app {
@@ -54,8 +55,9 @@ class QuasiStaticDriver final : public Driver {
   std::size_t si_ = 0;  // current stage
   double t0_ = 0;       // s, its start time
   std::optional<loading::StageControl> control_;
-  std::optional<CreepControl> creep_;          // creep stages
-  std::optional<CorrosionControl> corrosion_;  // corrosion stages
+  std::optional<CreepControl> creep_;            // creep stages
+  std::optional<CorrosionControl> corrosion_;    // corrosion stages
+  std::optional<loading::QuietBoundary> quiet_;  // from the model file (no state of its own)
   measure::SpecimenState state_;
   double v_ = 0;               // m/s, top platen
   double stage_fraction_ = 0;  // largest progress fraction of the stage so far

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "ae_output.hpp"
 #include "vorodec/io/atomic_file.hpp"
 #include "vorodec/io/csv_writer.hpp"
 #include "vorodec/measure/failure_stages.hpp"
@@ -120,7 +121,7 @@ std::string corrosion_json(const io::ModelConfig& cfg, const RunSummary& s) {
 
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,
                    const RunSummary& s, std::size_t initial_contacts, double dt, std::size_t broken,
-                   const std::string& grains) {
+                   const std::string& grains, const std::string& acoustic_emission) {
   const auto& f = s.failure_stages;
   const std::string stages =
       f.valid ? fmt::format(
@@ -139,7 +140,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
           "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
           "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n{}  \"failure_rate\": {:.6g},\n"
           "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
-          "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}{}{}\n}}\n",
+          "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}{}{}{}\n}}\n",
           cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
           s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
           grains, initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
@@ -148,14 +149,15 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
                                 "\"yy\": {:.8g}, \"xy\": {:.8g}}}",
                                 s.zones, s.zone_stress_xx, s.zone_stress_yy, s.zone_stress_xy)
                   : std::string(),
-          implicit_json(s.implicit_start), creep_json(cfg, s), corrosion_json(cfg, s)));
+          implicit_json(s.implicit_start), creep_json(cfg, s), corrosion_json(cfg, s),
+          acoustic_emission));
 }
 
 }  // namespace
 
 RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve curve,
-                         const DriverOutcome& outcome, double wall_seconds,
-                         const std::filesystem::path& out) {
+                         const DriverOutcome& outcome, const measure::AeSettings& ae,
+                         double wall_seconds, const std::filesystem::path& out) {
   const model::Model& model = view.model;
   const solver::Solver& solver = view.solver;
   const geometry::Tessellation& specimen = view.specimen;
@@ -204,7 +206,8 @@ RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve 
   write_summary(
       out / "summary.json", cfg, summary, solver.initial_bonded_contacts(), solver.dt(),
       summary.cracks_tensile + summary.cracks_shear,
-      grain_summary(cfg, specimen, measure::grain_cracks(solver.cracks(), specimen.block_grain)));
+      grain_summary(cfg, specimen, measure::grain_cracks(solver.cracks(), specimen.block_grain)),
+      ae_json(measure::cluster_events(solver.cracks(), ae), ae));
   return summary;
 }
 

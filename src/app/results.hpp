@@ -7,11 +7,12 @@
 #include "driver.hpp"
 #include "observers.hpp"
 #include "vorodec/io/model_file.hpp"
+#include "vorodec/measure/ae_catalogue.hpp"
 
 namespace vorodec::app {
 
 RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve curve,
-                         const DriverOutcome& outcome, double wall_seconds,
-                         const std::filesystem::path& out);
+                         const DriverOutcome& outcome, const measure::AeSettings& ae,
+                         double wall_seconds, const std::filesystem::path& out);
 
 }  // namespace vorodec::app

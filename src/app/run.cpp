@@ -6,6 +6,7 @@
 #include <csignal>
 #include <sstream>
 
+#include "ae_output.hpp"
 #include "damage_output.hpp"
 #include "observers.hpp"
 #include "progress.hpp"
@@ -48,6 +49,7 @@ struct Run {
   PreparedModel prepared;
   loading::SpecimenBoundary boundary;
   DamageOutput damage;
+  measure::AeSettings ae;
   Curve curve;
   QuasiStaticDriver driver;
   Observers observers;
@@ -66,6 +68,7 @@ struct Run {
         prepared(prepare_model(c, t)),
         boundary(*prepared.model),
         damage(*prepared.model, c.output.damage_grid_cell),
+        ae(ae_settings(c, damage.mean_block_size(), prepared.model->thickness)),
         driver(c, *prepared.model, *prepared.solver, boundary, t,
                o.max_steps > 0 ? o.max_steps : c.max_steps, o.max_steps > 0),
         progress(o.progress) {}
@@ -131,7 +134,7 @@ struct Run {
     report_checkpoints();
     observers.flush();
     RunSummary s =
-        write_results(cfg, driver.view(), curve, driver.outcome(), wall_seconds(), options.out);
+        write_results(cfg, driver.view(), curve, driver.outcome(), ae, wall_seconds(), options.out);
     std::error_code ec;
     fs::remove(options.out / kCheckpointFile, ec);  // a finished run has nothing to resume
     return s;
@@ -181,8 +184,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   run.header = {VORODEC_VERSION,    fs::absolute(cfg.file).string(),
                 flatten(overrides), hash_of(cfg, overrides),
                 options.max_steps,  options.write_vtk};
-  run.observers = make_observers(run.driver.view(), run.damage, options.out, options.write_vtk,
-                                 run.curve, nullptr);
+  run.observers = make_observers(run.driver.view(), run.damage, run.ae, options.out,
+                                 options.write_vtk, run.curve, nullptr);
   return run.execute();
 }
 
@@ -214,7 +217,8 @@ RunSummary resume_run(const fs::path& dir, long stop_at_step, bool progress) {
     model::load_state(ar, *run.prepared.model);
     run.prepared.solver->load(ar);
     run.driver.load(ar);
-    run.observers = make_observers(run.driver.view(), run.damage, dir, h.write_vtk, run.curve, &ar);
+    run.observers =
+        make_observers(run.driver.view(), run.damage, run.ae, dir, h.write_vtk, run.curve, &ar);
   } catch (const std::exception& e) {  // a state that does not fit the model, or spoilt outputs
     throw checkpoint::CheckpointError(
         fmt::format("{}: cannot continue from it: {}", (dir / kCheckpointFile).string(), e.what()));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <tuple>
 
 #include "override.hpp"
 #include "toml_section.hpp"
@@ -908,6 +909,55 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     read_stages(TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), file.string()), i,
                 cfg.load_path.stages, cfg);
 
+  if (top.has("quiet_boundary")) {
+    TomlSection q = top.sub("quiet_boundary");
+    QuietBoundaryConfig qb;
+    const auto side_of = [&](const toml::node* where, std::string_view key,
+                             const std::string& name) {
+      const std::pair<const char*, loading::Side> names[] = {{"left", loading::Side::left},
+                                                             {"right", loading::Side::right},
+                                                             {"bottom", loading::Side::bottom},
+                                                             {"top", loading::Side::top}};
+      for (const auto& [n, s] : names)
+        if (name == n) return s;
+      q.fail_at(
+          where, key,
+          fmt::format("'{}' is not a side: \"left\", \"right\", \"bottom\" or \"top\"", name));
+    };
+    const toml::node* sides = q.node("sides");
+    if (sides) {
+      if (!sides->is_array()) q.fail("sides", "an array of sides, e.g. [\"left\", \"right\"]");
+      for (const toml::node& e : *sides->as_array()) {
+        if (!e.is_string()) q.fail_at(&e, "sides", "each side is a string, e.g. \"left\"");
+        qb.sides.push_back(side_of(&e, "sides", *e.value<std::string>()));
+      }
+    }
+    for (const auto& [key, spring, speed] : {std::tuple{"p_wave_speed", "jkn", &qb.p_wave_speed},
+                                             std::tuple{"s_wave_speed", "jks", &qb.s_wave_speed}}) {
+      if (q.has(key))
+        *speed = q.positive(key, laws::required);
+      else if (!cfg.joints.params.contains(spring))
+        q.fail(key, fmt::format("required: the joints' law has no {} to derive it from", spring));
+    }
+    if (q.has("input_side")) {
+      qb.input_side = side_of(q.node("input_side"), "input_side", q.string("input_side", nullptr));
+      if (std::find(qb.sides.begin(), qb.sides.end(), *qb.input_side) != qb.sides.end())
+        q.fail("input_side", "the input side absorbs as well: leave it out of 'sides'");
+      qb.input_velocity = q.number("input_velocity", laws::required);
+      qb.input_duration = q.positive("input_duration", laws::required);
+      const std::string normal = "normal";
+      const std::string dir = q.string("input_direction", &normal);
+      if (dir != "normal" && dir != "shear")
+        q.fail("input_direction", "\"normal\" (into the side) or \"shear\" (along it)");
+      qb.input_shear = dir == "shear";
+    }
+    if (qb.sides.empty() && !qb.input_side)
+      q.fail("sides", "name the absorbing sides (or an input_side)");
+    if (cfg.deformable.enabled)
+      q.fail("sides", "quiet boundaries need rigid blocks ([blocks] deformable = false)");
+    q.finish();
+    cfg.quiet_boundary = qb;
+  }
   if (top.has("output")) {
     TomlSection o = top.sub("output");
     cfg.output.history_steps = o.integer("history_steps", 200, 1);
@@ -916,6 +966,9 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
       cfg.output.damage_grid_cell = o.positive("damage_grid_cell", laws::required);
     cfg.output.checkpoint_steps = o.integer("checkpoint_steps", 0, 0);
     cfg.output.checkpoint_wall_time = o.non_negative("checkpoint_wall_time", 600.0);
+    if (o.has("ae_radius")) cfg.output.ae_radius = o.positive("ae_radius", laws::required);
+    if (o.has("ae_shear_wave_speed"))
+      cfg.output.ae_shear_wave_speed = o.positive("ae_shear_wave_speed", laws::required);
     o.finish();
   }
   top.finish();

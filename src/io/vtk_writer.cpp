@@ -9,6 +9,7 @@
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkType.h>
@@ -306,6 +307,25 @@ void write_xml(vtkDataObject* data, const std::filesystem::path& file) {
 }
 
 }  // namespace
+
+void write_point_set(const VtkPointSet& set, const std::filesystem::path& file) {
+  const std::size_t n = set.points.size();
+  vtkNew<vtkPolyData> pd;
+  vtkNew<vtkPoints> pts = make_points(n);
+  vtkNew<vtkCellArray> verts;
+  for (std::size_t i = 0; i < n; ++i) {
+    set_point(pts, i, set.points[i]);
+    const vtkIdType id = static_cast<vtkIdType>(i);
+    verts->InsertNextCell(1, &id);
+  }
+  pd->SetPoints(pts);
+  pd->SetVerts(verts);
+  for (const VtkPointSet::Field& f : set.fields) {
+    require_size(f.values.size(), n, f.name.c_str());
+    pd->GetPointData()->AddArray(double_array(f.name.c_str(), f.values));
+  }
+  write_xml<vtkXMLPolyDataWriter>(pd, file);
+}
 
 VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir) : dir_(std::move(dir)) {
   std::error_code ec;

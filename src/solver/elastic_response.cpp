@@ -71,8 +71,10 @@ std::vector<Linearised> linearise(const model::Model& model,
     model::Contact copy = c;
     e.frame = model::contact_frame(bl.corners(), copy);
     const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-    e.la = {e.frame.point.x - bl.x[a], e.frame.point.y - bl.y[a]};
-    e.lb = {e.frame.point.x - bl.x[b], e.frame.point.y - bl.y[b]};
+    // The force acts at the arm, and the shear coordinate moves by gain times the arm's
+    // displacement along s (ContactFrame): the shear spring acts as gain^2 ks there.
+    e.la = {e.frame.arm.x - bl.x[a], e.frame.arm.y - bl.y[a]};
+    e.lb = {e.frame.arm.x - bl.x[b], e.frame.arm.y - bl.y[b]};
   }
   return lin;
 }
@@ -101,7 +103,7 @@ System assemble(const model::Model& model, const std::vector<Linearised>& lin,
     if (!active[i]) continue;
     const Linearised& e = lin[i];
     const model::Point nv = e.frame.n, s{-nv.y, nv.x};
-    const double kn = e.springs.kn, ks = e.springs.ks;
+    const double kn = e.springs.kn, ks = e.frame.gain * e.frame.gain * e.springs.ks;
     const double dxx = kn * nv.x * nv.x + ks * s.x * s.x;
     const double dxy = kn * nv.x * nv.y + ks * s.x * s.y;
     const double dyy = kn * nv.y * nv.y + ks * s.y * s.y;
@@ -224,7 +226,7 @@ ElasticResponse elastic_response(const model::Model& model,
     const double dx = (u(lc, a, 0) - e.la.ry * u(lc, a, 2)) - (u(lc, b, 0) - e.lb.ry * u(lc, b, 2));
     const double dy = (u(lc, a, 1) + e.la.rx * u(lc, a, 2)) - (u(lc, b, 1) + e.lb.rx * u(lc, b, 2));
     const model::Point nv = e.frame.n;
-    return std::array<double, 2>{dx * nv.x + dy * nv.y, -dx * nv.y + dy * nv.x};
+    return std::array<double, 2>{dx * nv.x + dy * nv.y, e.frame.gain * (-dx * nv.y + dy * nv.x)};
   };
   const auto t0 = std::chrono::steady_clock::now();
   for (bool again = true; again && r.passes < 50;) {
@@ -263,8 +265,9 @@ ElasticResponse elastic_response(const model::Model& model,
       ec->dfn[i] = -lin[i].springs.kn * dn;  // opening (dn > 0) lowers the compression
       ec->dfs[i] = -lin[i].springs.ks * ds;
       const model::Point nv = lin[i].frame.n;
-      const double fx = ec->dfn[i] * nv.x - ec->dfs[i] * nv.y;
-      const double fy = ec->dfn[i] * nv.y + ec->dfs[i] * nv.x;
+      const double gs = lin[i].frame.gain * ec->dfs[i];
+      const double fx = ec->dfn[i] * nv.x - gs * nv.y;
+      const double fy = ec->dfn[i] * nv.y + gs * nv.x;
       const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
       ec->force[a][0] += fx;
       ec->force[a][1] += fy;

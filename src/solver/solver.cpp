@@ -42,6 +42,14 @@ void Solver::detect(bool bond_new) {
   detector_.detect(model_, laws_, bond_new);
   ++detections_;
   const auto& bl = model_.blocks;
+  // A new contact's shear spring starts unstretched where the blocks now are (on the edge the
+  // step's walk will take it to; the detected edge stays for the step to walk from).
+  for (model::Contact& c : model_.contacts)
+    if (c.shear_edge == model::Contact::no_shear_edge) {
+      model::Contact walked = c;
+      c.shear = model::contact_frame(bl, walked).shear;
+      c.shear_edge = walked.edge;
+    }
   const std::size_t nb = bl.size(), nc = model_.contacts.size();
   law_begin_.assign(laws_.size() + 1, 0);
   std::vector<std::size_t> deformable(laws_.size(), 0);
@@ -114,7 +122,7 @@ void Solver::compute_time_step() {
   for (std::size_t l = 0; l < laws_.size(); ++l) {
     for (std::size_t i = law_begin_[l]; i < law_begin_[l + 1]; ++i) {
       model::Contact c = model_.contacts[i];
-      const Point p = model::contact_frame(bl, c).point;
+      const Point p = model::contact_frame(bl, c).arm;  // where the force acts
       const double k = laws_[l]->max_stiffness(i - law_begin_[l]);
       for (const auto blk : {static_cast<std::size_t>(c.a), static_cast<std::size_t>(c.b)}) {
         const double rx = p.x - bl.x[blk], ry = p.y - bl.y[blk];
@@ -483,12 +491,14 @@ void Solver::break_bond(std::size_t i, laws::ContactEvent type, double time) {
   const auto [g, local] = group_of(law_begin_, c, i);
   laws::BondView b{};
   laws_[g]->bond(local, b);
+  // What the broken joint will give up as it opens or slips: its strain energy at the break.
+  const double released = laws_[g]->strain_energy(local, c.fn, c.fs);
   b.broken = true;
   laws_[g]->set_bond(local, b, c.gap, c.fn, c.fs);
   c.state = type == laws::ContactEvent::tensile_failure ? model::ContactState::tensile_failed
                                                         : model::ContactState::shear_failed;
   const model::ContactFrame f = model::contact_frame(model_.blocks.corners(), c);
-  cracks_.push_back({time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, type});
+  cracks_.push_back({time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, type, released});
 }
 
 }  // namespace vorodec::solver

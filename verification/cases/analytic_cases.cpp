@@ -115,24 +115,26 @@ PairRun bonded_pair(double safety) {
   m.blocks.vx[0] = 0.01;
   m.blocks.vx[1] = -0.01;
   const double sep0 = m.blocks.x[1] - m.blocks.x[0];
-  std::vector<double> crossings, energy;
-  double prev = 0;
+  std::vector<double> crossings;
+  double prev = 0, e0 = 0, drift = 0;
+  auto& bl = m.blocks;
   while (solver->time() < 100.5 * period) {
+    const std::vector<double> vx = bl.vx, vy = bl.vy, om = bl.omega;
     solver->step();
-    const double u = (m.blocks.x[1] - m.blocks.x[0]) - sep0;
+    const double u = (bl.x[1] - bl.x[0]) - sep0;
     if (prev < 0 && u >= 0) crossings.push_back(solver->time() - solver->dt() * u / (u - prev));
     prev = u;
-    energy.push_back(solver->kinetic_energy() + solver->contact_strain_energy());
+    // The leapfrog's conserved energy: the kinetic energy time-centred as 1/2 m v(n-1/2).v(n+1/2)
+    // (the plain sum oscillates within a period by the half-step offset).
+    double e = solver->contact_strain_energy();
+    for (std::size_t b = 0; b < bl.size(); ++b)
+      e += 0.5 * (bl.mass[b] * (vx[b] * bl.vx[b] + vy[b] * bl.vy[b]) +
+                  bl.inertia[b] * om[b] * bl.omega[b]);
+    if (e0 == 0) e0 = e;
+    drift = std::max(drift, std::abs(e / e0 - 1.0));
   }
   const double measured = (crossings.back() - crossings.front()) / double(crossings.size() - 1);
-  // Mean energy over the first and the last period (leapfrog energy oscillates within a period).
-  const auto per = static_cast<std::size_t>(period / solver->dt());
-  double first = 0, last = 0;
-  for (std::size_t i = 0; i < per; ++i) {
-    first += energy[i];
-    last += energy[energy.size() - 1 - i];
-  }
-  return {measured, period, std::abs(last / first - 1.0), solver->dt()};
+  return {measured, period, drift, solver->dt()};
 }
 }  // namespace
 
@@ -150,7 +152,8 @@ CaseResult a3_bonded_pair_period() {
 
 CaseResult a3_bonded_pair_energy_drift() {
   return timed({"A3", "bonded pair: energy drift over 100 periods",
-                "kinetic + strain energy constant", 0, 0, 0, 1e-4, "safety factor 0.1, no damping"},
+                "kinetic (time-centred) + strain energy constant: max deviation", 0, 0, 0, 1e-4,
+                "safety factor 0.1, no damping"},
                [](CaseResult& r) { r.error = r.measured = bonded_pair(0.1).energy_drift; });
 }
 

@@ -44,7 +44,8 @@ UndampedEnergy undamped_energy(long steps, double safety, double shear_stiffness
   r.blocks = bl.size();
   r.contacts = m.contacts.size();
   std::vector<double> vx, vy, om;
-  double e0_shadow = 0, e0_plain = 0;
+  double e0_shadow = 0, e0_plain = 0, first = 0, last = 0;
+  const long tenth = std::max(steps / 10, 1L);
   for (long n = 0; n < steps; ++n) {
     vx = bl.vx;
     vy = bl.vy;
@@ -63,8 +64,11 @@ UndampedEnergy undamped_energy(long steps, double safety, double shear_stiffness
       e0_plain = e_plain;
     }
     r.shadow = std::max(r.shadow, std::abs(e_shadow - e0_shadow) / e0_shadow);
+    if (n < tenth) first += e_shadow;
+    if (n >= steps - tenth) last += e_shadow;
     r.plain = std::max(r.plain, std::abs(e_plain - e0_plain) / e0_plain);
   }
+  r.drift = std::abs(last - first) / static_cast<double>(tenth) / e0_shadow;
   r.steps = solver->steps();
   r.dt = solver->dt();
   r.contacts = m.contacts.size();

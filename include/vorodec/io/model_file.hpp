@@ -12,6 +12,7 @@
 #include "vorodec/laws/contact_law.hpp"
 #include "vorodec/laws/stress_corrosion.hpp"
 #include "vorodec/loading/load_path.hpp"
+#include "vorodec/loading/quiet_boundary.hpp"
 #include "vorodec/solver/solver.hpp"
 
 namespace vorodec::io {
@@ -75,12 +76,30 @@ struct CorrosionConfig {
   laws::StrengthDegradation degradation;
 };
 
+// [quiet_boundary]: viscous boundaries on sides of the specimen's outline, and a half-sine
+// particle-velocity pulse entering through one side (loading/quiet_boundary.hpp, PHYSICS 14).
+struct QuietBoundaryConfig {
+  std::vector<loading::Side> sides;  // absorbing
+  // m/s; 0: a row of rigid blocks' sqrt(jkn d / density) and sqrt(jks d / density), d the mean
+  // block size (VERIFICATION A9)
+  double p_wave_speed = 0, s_wave_speed = 0;
+  std::optional<loading::Side> input_side;  // drives and absorbs
+  double input_velocity = 0;                // m/s, peak of the half-sine
+  double input_duration = 0;                // s
+  bool input_shear = false;                 // along the side, not into it
+};
+
 struct OutputSettings {
   long history_steps = 200;       // steps between history rows
   long vtk_steps = 20000;         // steps between VTK frames (also at stage ends)
   double damage_grid_cell = 0.0;  // m, cell side of the damage grid; 0: about 5 mean block sizes
   long checkpoint_steps = 0;      // steps between checkpoints; 0: none by step count
   double checkpoint_wall_time = 600.0;  // s of wall time between checkpoints; 0: none by time
+  // Acoustic-emission events (ae_events.csv): cracks within ae_radius m of each other, each
+  // within ae_radius / ae_shear_wave_speed s of the last, are one event. 0: two mean block
+  // sizes, and the shear-wave speed of a row of blocks sqrt(jks d / density) (PHYSICS 14).
+  double ae_radius = 0.0;
+  double ae_shear_wave_speed = 0.0;
 };
 
 // [blocks] deformable = true: specimen blocks zoned into constant-strain triangles (platens stay
@@ -116,6 +135,7 @@ struct ModelConfig {
   std::optional<JointMix> joint_mix;
   std::optional<GrainConfig> grains;  // grain-based specimen
   std::optional<CorrosionConfig> corrosion;
+  std::optional<QuietBoundaryConfig> quiet_boundary;
   LawChoice platens;            // platen to specimen
   bool platens_bonded = false;  // glued to the specimen (direct tension)
   solver::SolverSettings solver;

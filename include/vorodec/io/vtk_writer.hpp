@@ -87,4 +87,16 @@ class VtkSeriesWriter {
   bool zones_ = false;  // the series has deformable-block zones
 };
 
+// Points with named scalars (the acoustic-emission catalogue), one .vtp written whole: under a
+// temporary name, then renamed.
+struct VtkPointSet {
+  std::vector<geometry::Point> points;  // m
+  struct Field {
+    std::string name;
+    std::vector<double> values;  // one per point
+  };
+  std::vector<Field> fields;
+};
+void write_point_set(const VtkPointSet& set, const std::filesystem::path& file);
+
 }  // namespace vorodec::io

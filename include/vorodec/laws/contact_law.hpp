@@ -44,6 +44,7 @@ struct CrackEvent {
   double length;      // m
   std::int32_t a, b;  // blocks
   ContactEvent type;  // tensile_failure or shear_failure
+  double energy;      // J per m, strain energy the failure released (the AE catalogue's source)
 };
 
 // Per-step outputs that are reduced over contacts.

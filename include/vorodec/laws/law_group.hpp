@@ -123,8 +123,10 @@ class LawGroupOf final : public LawGroup {
       const model::BodyPoint pb = model::edge_point(bl, z, b, c.edge, f.point);
       const model::Point va = model::velocity_at(bl, z, a, pa, f.point);
       const model::Point vb = model::velocity_at(bl, z, b, pb, f.point);
+      // Gridpoint corners: the increment from the gridpoints' velocities, force at the point.
+      const double du_s = ((va.x - vb.x) * -f.n.y + (va.y - vb.y) * f.n.x) * loop.dt;
       const model::Point force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f,
-                                        va.x - vb.x, va.y - vb.y, cracks, slip, breakage, dashpots);
+                                        du_s, 1.0, cracks, slip, breakage, dashpots);
       const std::uint8_t shared = ctx.shared_sides[i];
       const auto apply = [&](std::size_t blk, const model::BodyPoint& p, double sign, bool on_b) {
         if (p.g0 >= 0) {
@@ -222,16 +224,26 @@ class LawGroupOf final : public LawGroup {
         const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
         const model::BlockKinematics& ka = kin[a];
         const model::BlockKinematics& kb = kin[b];
-        // Relative velocity of a with respect to b at the contact point.
-        const double vrx =
-            (ka.vx - ka.omega * (f.point.y - ka.y)) - (kb.vx - kb.omega * (f.point.y - kb.y));
-        const double vry =
-            (ka.vy + ka.omega * (f.point.x - ka.x)) - (kb.vy + kb.omega * (f.point.x - kb.x));
+        // The exact change of the shear coordinate, so that the spring's energy is a function of
+        // the positions; from the relative velocity at the arm only where its edge (the
+        // coordinate's chart) changed since the last step.
+        double du_s;
+        if (c.shear_edge == c.edge) {
+          du_s = f.shear - c.shear;
+        } else {
+          const double vrx =
+              (ka.vx - ka.omega * (f.arm.y - ka.y)) - (kb.vx - kb.omega * (f.arm.y - kb.y));
+          const double vry =
+              (ka.vy + ka.omega * (f.arm.x - ka.x)) - (kb.vy + kb.omega * (f.arm.x - kb.x));
+          du_s = (vry * f.n.x - vrx * f.n.y) * loop.dt;
+        }
+        c.shear = f.shear;
+        c.shear_edge = c.edge;
         const model::Point force =
-            update(loop, c, *props, *state, f, vrx, vry, cracks, slip, breakage, dashpots);
+            update(loop, c, *props, *state, f, du_s, f.gain, cracks, slip, breakage, dashpots);
         const double fx = force.x, fy = force.y;
-        const double ma = (f.point.x - ka.x) * fy - (f.point.y - ka.y) * fx;
-        const double mb = (f.point.x - kb.x) * fy - (f.point.y - kb.y) * fx;
+        const double ma = (f.arm.x - ka.x) * fy - (f.arm.y - ka.y) * fx;
+        const double mb = (f.arm.x - kb.x) * fy - (f.arm.y - kb.y) * fx;
         const std::uint8_t shared = *shared_side;
         if (shared != 0) forces[&c - contacts] = {fx, fy, ma, mb};
         if (!(shared & a_shared)) {
@@ -298,15 +310,16 @@ class LawGroupOf final : public LawGroup {
     return {props_.data(), state_.data(), ctx.dt, ctx.time};
   }
 
-  // Law::evaluate for contact c with its properties and state, relative velocity (vrx, vry) of a
-  // with respect to b, its bookkeeping (state, crack, dissipation), and the force on a.
+  // Law::evaluate for contact c with its properties and state and shear increment du_s of a
+  // with respect to b, its bookkeeping (state, crack, dissipation), and the force on a: the
+  // shear force times `gain` (ContactFrame::gain) along s.
   [[gnu::always_inline]] inline model::Point update(
       const Loop& loop, model::Contact& c, const typename Law::Props& props,
-      typename Law::State& state, const model::ContactFrame& f, double vrx, double vry,
+      typename Law::State& state, const model::ContactFrame& f, double du_s, double gain,
       std::vector<CrackEvent>& cracks, double& slip, double& breakage, double& dashpots) {
     const model::Point s{-f.n.y, f.n.x};
     const double dt = loop.dt;
-    const ContactKinematics k{f.gap, f.gap - c.gap, (vrx * s.x + vry * s.y) * dt, c.length, dt};
+    const ContactKinematics k{f.gap, f.gap - c.gap, du_s, c.length, dt};
     double viscous_work = 0.0, energy_before = 0.0;
     if constexpr (is_viscous) energy_before = Law::strain_energy(props, state, c.fn, c.fs);
     const LawResult r = [&] {
@@ -336,7 +349,7 @@ class LawGroupOf final : public LawGroup {
       c.state = r.event == ContactEvent::tensile_failure ? model::ContactState::tensile_failed
                                                          : model::ContactState::shear_failed;
       cracks.push_back(
-          {loop.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event});
+          {loop.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event, dissipated});
     } else {
       // Most steps are elastic and dissipate nothing: they skip the sum, which lives on the stack.
       if (!r.elastic) slip += dissipated;
@@ -344,7 +357,8 @@ class LawGroupOf final : public LawGroup {
         c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
                                                 : model::ContactState::intact;
     }
-    return {r.fn * f.n.x + r.fs * s.x, r.fn * f.n.y + r.fs * s.y};
+    const double fs = gain * r.fs;
+    return {r.fn * f.n.x + fs * s.x, r.fn * f.n.y + fs * s.y};
   }
 
   typename Law::Params params_;

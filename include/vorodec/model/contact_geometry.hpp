@@ -2,6 +2,7 @@
 // Gap, normal and contact point between a rounded corner and a block edge with rounded ends
 // (PHYSICS 2.2). Used by the step kernel and by contact detection.
 #include <cmath>
+#include <limits>
 
 #include "vorodec/model/model.hpp"
 
@@ -12,6 +13,15 @@ struct ContactFrame {
   double gap;   // m, negative = overlap
   Point point;  // contact point, middle of the gap
   int side;     // -1: against the edge's start corner, 0: straight part, +1: against its end corner
+  // The conservative shear coordinate (PHYSICS 3, README "Energy conservation"): shear, m, is a
+  // function of both blocks' positions, the coordinate of the corner's arc centre `arm` along
+  // the edge (on an end arc: continued by the radii's sum times the sine of the normal's angle
+  // from the edge normal). Its gradient with respect to the arm is gain * s, so the force
+  // n fn + gain s fs applied at the arm to a (and minus it to b) derives from the springs'
+  // energy.
+  Point arm;
+  double shear;
+  double gain;
 };
 
 // Corner arc (cA, rA) against edge v0 -> v1 of length `len` whose end arcs are (c0, r0) and
@@ -35,6 +45,9 @@ inline ContactFrame corner_edge_frame(Point cA, double rA, Point v0, Point v1, d
     f.gap = dist - rA - (f.side < 0 ? r0 : r1);
   }
   f.point = cA - (rA + 0.5 * f.gap) * f.n;
+  f.arm = cA;  // detection reads the gap and the point; the step's contact_frame gives the shear
+  f.shear = std::numeric_limits<double>::quiet_NaN();
+  f.gain = 1.0;
   return f;
 }
 
@@ -57,6 +70,9 @@ inline ContactFrame contact_frame(const CornerView& bl, Contact& c) {
       f.n = {t.y, -t.x};
       f.gap = dot(r, f.n) - rA;
       f.point = cA - (rA + 0.5 * f.gap) * f.n;
+      f.arm = cA;
+      f.shear = s;
+      f.gain = 1.0;
       return f;
     }
     f.side = s < edge.s0 ? -1 : 1;
@@ -66,6 +82,17 @@ inline ContactFrame contact_frame(const CornerView& bl, Contact& c) {
     f.n = (1.0 / dist) * d;
     f.gap = dist - rA - bl.shape[ec].radius;
     f.point = cA - (rA + 0.5 * f.gap) * f.n;
+    // Continuous with the straight part: the tangent point's coordinate plus rho psi, psi the
+    // normal's angle from the edge's outward normal and rho the radii's sum (a constant). An arc
+    // belongs to both edges that meet at its corner, and detection may hand the contact from
+    // one to the other: the gain rho / dist is the same on both, so the force does not jump
+    // there (with rho sin(psi) it would, and the energy with it: measured).
+    const Point ne{t.y, -t.x};
+    const double rho = rA + bl.shape[ec].radius;
+    f.arm = cA;
+    const double sn = cross(ne, f.n), cs = dot(ne, f.n);
+    f.shear = (f.side < 0 ? edge.s0 : edge.s1) + rho * std::atan2(sn, cs);
+    f.gain = rho / dist;
     if (walk == 2) return f;
     // Past the arc onto the neighbouring edge? Then that edge is the contact's feature.
     if (f.side < 0) {

@@ -95,9 +95,14 @@ struct Contact {
   double length = 0.0;        // m, joint length this contact represents
   double gap = 0.0;           // m, current gap (negative = overlap)
   double fn = 0.0, fs = 0.0;  // N per m thickness, normal force positive in compression
-  std::uint16_t law = 0;      // index of the contact law group that owns it
+  // m, the shear coordinate (ContactFrame::shear) at the last step, and the edge whose coordinate
+  // it is: the step's shear increment is its exact change while the edge stays the same.
+  double shear = 0.0;
+  std::uint16_t law = 0;  // index of the contact law group that owns it
   ContactState state = ContactState::intact;
   std::uint8_t bonded = 0;  // 1: part of the initial tessellation (cohesive until it fails)
+  std::uint32_t shear_edge = no_shear_edge;
+  static constexpr std::uint32_t no_shear_edge = 0xffffffffu;  // new: no coordinate yet
 };
 
 // Force of one contact on block a and its moments about both centroids; block b receives the
