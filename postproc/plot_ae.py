@@ -64,7 +64,7 @@ def main():
     fig.savefig(prefix + "_activity.png", dpi=130)
 
     # Map: events in space, coloured by time, sized by magnitude.
-    fig, ax = plt.subplots(figsize=(5, 9))
+    fig, ax = plt.subplots(figsize=(5.6, 9))
     m = ev["magnitude"]
     finite = np.isfinite(m)
     size = 4 + 30 * (m - m[finite].min()) / max(np.ptp(m[finite]), 1e-12)

@@ -93,10 +93,11 @@ TEST(Resume, GrainBasedDeformableRunMatchesTheUninterruptedRun) {
 }
 
 TEST(Resume, CorrosionStageStoppedMidFatigueMatchesTheUninterruptedRun) {
-  // corrosion_small: loaded by step ~15000, then corroded until it collapses (step 154400); the
-  // stops fall between corrosion steps, in equilibria, and in the collapse.
+  // corrosion_small: corrosion steps from step ~2000 to 33700, then no equilibrium: the collapse
+  // ends the run at step 133700; the stops fall between corrosion steps, in equilibria, and in
+  // the collapse.
   EXPECT_NO_FATAL_FAILURE(expect_resume_matches("corrosion", kModels + "corrosion_small.toml",
-                                                {9000, 40000, 100000, 152000}));
+                                                {9020, 20000, 60000, 130000}));
 }
 
 TEST(Resume, DeformableRunMatchesTheUninterruptedRun) {

@@ -82,3 +82,24 @@ TEST(Verification, A11NoDegradationBelowTheActivationLevel) {
   EXPECT_TRUE(std::isinf(a11_stepped(false, 0.3, 4, false)));
   EXPECT_TRUE(passes(a11_stress_corrosion(false, 0.3, 4)));
 }
+
+TEST(Verification, A9PWaveInARowOfBlocksTravelsAtSqrtJknDOverRho) {
+  for (const auto& r : a9_row_of_blocks()) {
+    if (!r.informational) {
+      EXPECT_TRUE(passes(r));
+    }
+  }
+}
+TEST(Verification, A9QuietEndReflectsAlmostNothingAndAFreeEndEverything) {
+  for (const auto& r : quiet_boundary_absorption()) {
+    EXPECT_TRUE(passes(r));
+  }
+}
+TEST(Verification, A9PWaveInAVoronoiBarTravelsAtItsStaticModulusSpeed) {
+  for (const auto& r : a9_voronoi_bar()) {
+    EXPECT_TRUE(passes(r));
+  }
+}
+TEST(Verification, A9UndampedRowWithQuietEndsStaysBounded) {
+  EXPECT_TRUE(passes(quiet_row_long_run(50000)));  // the report runs 1e6 steps
+}

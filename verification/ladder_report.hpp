@@ -5,7 +5,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "cases/cases.hpp"
@@ -51,15 +53,20 @@ inline void write_ladders(std::ostream& out, const std::vector<Ladder>& analytic
   if (std::system(cmd.c_str()) == 0) out << "\n![convergence ladders](ladders.png)\n";
 }
 
+inline std::string order_text(const Ladder& l);
+
 // <stem>.csv and, by verification/plot_cost_accuracy.py, <stem>.png: the ladder's error against
-// wall time. True if the plot was drawn.
+// wall time, its observed order only where the errors fall monotonically (else NaN: "no trend").
+// True if the plot was drawn.
 inline bool cost_accuracy_plot(const Ladder& l, const std::filesystem::path& dir,
                                const std::string& source_dir, const std::string& stem) {
   std::ofstream csv(dir / (stem + ".csv"));
   csv << "parameter,value,error,seconds,default,order\n";
+  const bool monotone = order_text(l).find("no trend") == std::string::npos;
+  const double order = monotone ? l.order() : std::numeric_limits<double>::quiet_NaN();
   for (const LadderRung& r : l.rungs)
     csv << fmt::format("{:.9g},{:.9g},{:.6g},{:.3f},{},{:.4g}\n", r.parameter, r.value, r.error,
-                       r.seconds, r.is_default ? 1 : 0, l.order());
+                       r.seconds, r.is_default ? 1 : 0, order);
   csv.close();
   const std::string cmd = fmt::format(
       "/usr/bin/python3 {} {} {} '{}'",

@@ -26,7 +26,8 @@ def main(src, dst, title):
     order = float(rows[0]["order"]) if rows else float("nan")
     ax.set_xlabel("wall time (s)")
     ax.set_ylabel("error")
-    ax.set_title("%s\nobserved order in the setting: %.2f" % (title, order), fontsize=9)
+    order_text = ("%.2f" % order) if order == order else "no trend (errors not monotone)"
+    ax.set_title("%s\nobserved order in the setting: %s" % (title, order_text), fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(dst, dpi=130)

@@ -59,6 +59,8 @@ std::vector<CaseResult> deformable_column(double zone_size);
 std::vector<CaseResult> a9_row_of_blocks();
 std::vector<CaseResult> quiet_boundary_absorption();
 std::vector<CaseResult> a9_voronoi_bar();
+// The row with quiet ends and no damping for `steps` steps after the pulse (1e6: about a minute).
+CaseResult quiet_row_long_run(long steps);
 
 // Published results: whole model runs (minutes), run by verification/run.sh only.
 std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::string& binary);

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "cases.hpp"
@@ -25,6 +27,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 // Time of the largest value of a sampled series, refined by a parabola through its neighbours.
 double peak_time(const std::vector<double>& t, const std::vector<double>& v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::size_t k = 0;
   for (std::size_t i = 1; i < v.size(); ++i)
     if (v[i] > v[k]) k = i;
@@ -47,11 +50,14 @@ struct RowRun {
   double dt = 0;
 };
 
-// `blocks` squares of side d in a row, bonded elastic, undamped; the pulse enters through a quiet
-// left end; the right end is quiet (or free: `quiet_end` false). Records vx at `stations`
-// (block indices) for `duration` s; `snapshot` (if not null) gets every block's vx at its end.
+// `blocks` squares of side d in a row, bonded elastic, undamped; a pulse `wavelength` m long
+// (c times its duration) enters through a quiet left end; the right end is quiet (or free:
+// `quiet_end` false). Records vx at `stations` (block indices) for `duration` s, or for `steps`
+// steps if given; `snapshot` (if not null) gets every block's vx at its end, `energy` (if not
+// null) the kinetic plus contact strain energy after every step.
 RowRun row_run(int blocks, double wavelength, bool quiet_end, const std::vector<int>& stations,
-               double duration, std::vector<double>* snapshot = nullptr) {
+               double duration, std::vector<double>* snapshot = nullptr, long steps = 0,
+               std::vector<double>* energy = nullptr) {
   model::Model m;
   m.rounding_length = 0.01 * d;
   for (int i = 0; i < blocks; ++i)
@@ -72,13 +78,14 @@ RowRun row_run(int blocks, double wavelength, bool quiet_end, const std::vector<
   RowRun r;
   r.dt = solver->dt();
   r.v.resize(stations.size());
-  while (solver->time() < duration) {
+  while (steps > 0 ? solver->steps() < steps : solver->time() < duration) {
     quiet.clear_loads(m);
     quiet.apply(m, solver->time());
     solver->step();
     r.t.push_back(solver->time());
     for (std::size_t k = 0; k < stations.size(); ++k)
       r.v[k].push_back(m.blocks.vx[static_cast<std::size_t>(stations[k])] / v0);
+    if (energy) energy->push_back(solver->kinetic_energy() + solver->contact_strain_energy());
   }
   if (snapshot) *snapshot = m.blocks.vx;
   return r;
@@ -96,8 +103,8 @@ std::vector<CaseResult> a9_row_of_blocks() {
     const RowRun r = row_run(blocks, lambda, true, {100, 300}, (x2 + lambda) / c_row * 1.05);
     const double speed = (x2 - x1) / (peak_time(r.t, r.v[1]) - peak_time(r.t, r.v[0]));
     CaseResult c{"A9",
-                 fmt::format("P wave in a row of 400 rigid blocks, half-sine pulse of wavelength "
-                             "{:g} blocks: speed of its peak",
+                 fmt::format("P wave in a row of 400 rigid blocks, half-sine pulse {:g} blocks "
+                             "long: speed of its peak",
                              lambda_blocks),
                  "c = sqrt(jkn d / rho) (E_eff = jkn d)",
                  c_row,
@@ -169,6 +176,34 @@ std::vector<CaseResult> quiet_boundary_absorption() {
   return rows;
 }
 
+CaseResult quiet_row_long_run(long steps) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<double> energy;
+  const RowRun r = row_run(400, 20 * d, true, {200}, 0, nullptr, steps, &energy);
+  // The pulse has left through the right end after one transit and its length; from twice that
+  // on, the energy left in the row must stay small and must not grow.
+  const auto after = static_cast<std::size_t>(2 * (400 * d + 20 * d) / c_row / r.dt);
+  double peak = 0, later = 0;
+  for (std::size_t i = 0; i < energy.size(); ++i) {
+    if (i < after)
+      peak = std::max(peak, energy[i]);
+    else
+      later = std::max(later, energy[i]);
+  }
+  CaseResult c{"A9",
+               fmt::format("zero damping, quiet ends, {:g} steps: largest energy in the row after "
+                           "the pulse left / its largest before",
+                           static_cast<double>(steps)),
+               "bounded: the quiet ends take the pulse out and nothing grows",
+               0.0,
+               later / peak,
+               later / peak,
+               0.01,
+               "row of 400 blocks, half-sine pulse of 20 blocks"};
+  c.seconds = seconds_since(t0);
+  return c;
+}
+
 std::vector<CaseResult> a9_voronoi_bar() {
   const auto t0 = std::chrono::steady_clock::now();
   // The marble's blocks and contacts (models/ucs_marble.toml, strengths out of reach) in a
@@ -203,13 +238,16 @@ std::vector<CaseResult> a9_voronoi_bar() {
     }
     unit[top] = {0, -1, 0};
     const solver::ElasticResponse r = solver::elastic_response(m, solver->laws(), unit, load, 0);
-    modulus = -r.unit.force[top][1] / w * h;  // Pa: (F / w) / (1 m / h)
+    modulus = std::abs(r.unit.force[top][1]) / w * h;  // Pa: (F / w) / (1 m / h)
   }
   model::Model m = model::build_model(tess, {density, 1e-4, false});
   solver::SolverSettings s;
   s.local_damping = 0.0;
   auto solver = make_solver(m, "mohr_coulomb", marble, s);
-  const double c = std::sqrt(modulus / density), lambda = 0.04, v0 = 1e-3;
+  // A pulse five bar widths long. At 40 mm the peak travelled 3.5 % slower than c (measured);
+  // Rayleigh's correction for a strip, (nu pi w / lambda)^2 / 12, explains 1.1 % of it, the rest
+  // (scattering by the blocks?) is not established.
+  const double c = std::sqrt(modulus / density), lambda = 0.1, v0 = 1e-3;
   loading::QuietBoundary quiet(loading::outline_edges(m, loading::Side::top), {density, c, c});
   quiet.set_input(loading::outline_edges(m, loading::Side::bottom), [=](double t) {
     return loading::InputVelocity{
@@ -242,7 +280,7 @@ std::vector<CaseResult> a9_voronoi_bar() {
   CaseResult r{
       "A9",
       "P wave in a Voronoi bar (the marble's 2 mm blocks and contacts, 20 x 200 mm), "
-      "half-sine pulse of 40 mm: speed of its peak",
+      "half-sine pulse of 100 mm: speed of its peak",
       fmt::format("c = sqrt(E_eff / rho), E_eff = {:.4g} GPa the bar's static modulus "
                   "(implicit elastic response)",
                   modulus / 1e9),
