@@ -11,7 +11,7 @@ namespace vorodec::model {
 static_assert(sizeof(Blocks) == 624, "Blocks changed: see state()");
 static_assert(sizeof(Zoning) == 600, "Zoning changed: see state()");
 static_assert(sizeof(Model) == 1264, "Model changed: see state()");
-static_assert(sizeof(Contact) == 72, "Contact changed: see state()");
+static_assert(sizeof(Contact) == 88, "Contact changed: see state()");
 
 namespace {
 

@@ -47,7 +47,9 @@ void Solver::detect(bool bond_new) {
   for (model::Contact& c : model_.contacts)
     if (c.shear_edge == model::Contact::no_shear_edge) {
       model::Contact walked = c;
-      c.shear = model::contact_frame(bl, walked).shear;
+      const model::ContactFrame f = model::contact_frame(bl, walked);
+      c.shear = model::shear_coordinate(f);
+      c.shear_ray = f.ray;
       c.shear_edge = walked.edge;
     }
   const std::size_t nb = bl.size(), nc = model_.contacts.size();

@@ -229,15 +229,24 @@ class LawGroupOf final : public LawGroup {
         // coordinate's chart) changed since the last step.
         double du_s;
         if (c.shear_edge == c.edge) {
-          du_s = f.shear - c.shear;
+          // On an arc the coordinate follows the normal's turn since the last step (no atan2),
+          // from the tangent point when the contact comes onto the arc from the straight part
+          // (whose ray is (1, 0) exactly; so is the arc's at its tangent point, where both agree).
+          const bool was_straight = c.shear_ray.x == 1.0 && c.shear_ray.y == 0.0;
+          const double to = f.side == 0    ? f.shear
+                            : was_straight ? f.shear + f.rho * model::turn({1.0, 0.0}, f.ray)
+                                           : c.shear + f.rho * model::turn(c.shear_ray, f.ray);
+          du_s = to - c.shear;
+          c.shear = to;
         } else {
           const double vrx =
               (ka.vx - ka.omega * (f.arm.y - ka.y)) - (kb.vx - kb.omega * (f.arm.y - kb.y));
           const double vry =
               (ka.vy + ka.omega * (f.arm.x - ka.x)) - (kb.vy + kb.omega * (f.arm.x - kb.x));
           du_s = (vry * f.n.x - vrx * f.n.y) * loop.dt;
+          c.shear = model::shear_coordinate(f);
         }
-        c.shear = f.shear;
+        c.shear_ray = f.ray;
         c.shear_edge = c.edge;
         const model::Point force =
             update(loop, c, *props, *state, f, du_s, f.gain, cracks, slip, breakage, dashpots);

@@ -13,16 +13,34 @@ struct ContactFrame {
   double gap;   // m, negative = overlap
   Point point;  // contact point, middle of the gap
   int side;     // -1: against the edge's start corner, 0: straight part, +1: against its end corner
-  // The conservative shear coordinate (PHYSICS 3, README "Energy conservation"): shear, m, is a
-  // function of both blocks' positions, the coordinate of the corner's arc centre `arm` along
-  // the edge (on an end arc: continued by the radii's sum times the sine of the normal's angle
-  // from the edge normal). Its gradient with respect to the arm is gain * s, so the force
-  // n fn + gain s fs applied at the arm to a (and minus it to b) derives from the springs'
-  // energy.
+  // The conservative shear coordinate (README "Energy conservation"), a function of both blocks'
+  // positions: the coordinate of the corner's arc centre `arm` along the edge, continued on an
+  // end arc by rho psi, rho the radii's sum and psi the normal's angle from the edge's outward
+  // normal, `ray` = (cos psi, sin psi). On the straight part `shear` is the coordinate and rho
+  // 0; on an arc `shear` is its tangent point's (shear_coordinate() adds rho psi). The
+  // coordinate's gradient with respect to the arm is gain * s, so the force n fn + gain s fs
+  // applied at the arm to a (and minus it to b) derives from the springs' energy.
   Point arm;
   double shear;
   double gain;
+  double rho;
+  Point ray;
 };
+
+// The shear coordinate of frame f, m (an atan2 on an end arc: for a contact's first step and
+// where its edge changes; the steps between follow the arc by turn()).
+inline double shear_coordinate(const ContactFrame& f) {
+  return f.rho == 0.0 ? f.shear : f.shear + f.rho * std::atan2(f.ray.y, f.ray.x);
+}
+
+// Angle (rad) from unit vector a to unit vector b: one step's turn, so the series of atan(x),
+// x = tan of the angle, to x^7 (remainder below 1.2e-19 for |x| < 1e-2); atan2 beyond.
+inline double turn(Point a, Point b) {
+  const double c = dot(a, b), s = cross(a, b);
+  if (!(c > 0.0 && std::abs(s) < 1e-2 * c)) return std::atan2(s, c);
+  const double x = s / c, x2 = x * x;
+  return x * (1.0 - x2 * (1.0 / 3.0 - x2 * (1.0 / 5.0 - x2 / 7.0)));
+}
 
 // Corner arc (cA, rA) against edge v0 -> v1 of length `len` whose end arcs are (c0, r0) and
 // (c1, r1).
@@ -48,6 +66,8 @@ inline ContactFrame corner_edge_frame(Point cA, double rA, Point v0, Point v1, d
   f.arm = cA;  // detection reads the gap and the point; the step's contact_frame gives the shear
   f.shear = std::numeric_limits<double>::quiet_NaN();
   f.gain = 1.0;
+  f.rho = 0.0;
+  f.ray = {1.0, 0.0};
   return f;
 }
 
@@ -73,6 +93,8 @@ inline ContactFrame contact_frame(const CornerView& bl, Contact& c) {
       f.arm = cA;
       f.shear = s;
       f.gain = 1.0;
+      f.rho = 0.0;
+      f.ray = {1.0, 0.0};
       return f;
     }
     f.side = s < edge.s0 ? -1 : 1;
@@ -90,9 +112,10 @@ inline ContactFrame contact_frame(const CornerView& bl, Contact& c) {
     const Point ne{t.y, -t.x};
     const double rho = rA + bl.shape[ec].radius;
     f.arm = cA;
-    const double sn = cross(ne, f.n), cs = dot(ne, f.n);
-    f.shear = (f.side < 0 ? edge.s0 : edge.s1) + rho * std::atan2(sn, cs);
+    f.shear = f.side < 0 ? edge.s0 : edge.s1;
     f.gain = rho / dist;
+    f.rho = rho;
+    f.ray = {dot(ne, f.n), cross(ne, f.n)};
     if (walk == 2) return f;
     // Past the arc onto the neighbouring edge? Then that edge is the contact's feature.
     if (f.side < 0) {

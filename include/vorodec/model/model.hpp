@@ -95,9 +95,11 @@ struct Contact {
   double length = 0.0;        // m, joint length this contact represents
   double gap = 0.0;           // m, current gap (negative = overlap)
   double fn = 0.0, fs = 0.0;  // N per m thickness, normal force positive in compression
-  // m, the shear coordinate (ContactFrame::shear) at the last step, and the edge whose coordinate
-  // it is: the step's shear increment is its exact change while the edge stays the same.
+  // m, the shear coordinate (model::shear_coordinate) at the last step, with the edge it was on
+  // and its ContactFrame::ray ((1, 0) on the straight part): the step's shear increment is the
+  // coordinate's exact change while the edge stays the same.
   double shear = 0.0;
+  Point shear_ray{1.0, 0.0};
   std::uint16_t law = 0;  // index of the contact law group that owns it
   ContactState state = ContactState::intact;
   std::uint8_t bonded = 0;  // 1: part of the initial tessellation (cohesive until it fails)
