@@ -283,15 +283,16 @@ class FrameObserver final : public Observer {
 // checkpoint and the end), as they follow from the crack list alone.
 class AeObserver final : public Observer {
  public:
+  // Keeps the solver, not the view: make_observers' view is a temporary.
   AeObserver(const RunView& v, const measure::AeSettings& s, std::filesystem::path out)
-      : view_(v), settings_(s), out_(std::move(out)) {}
+      : solver_(v.solver), settings_(s), out_(std::move(out)) {}
   void flush() override {
-    write_ae_events(measure::cluster_events(view_.solver.cracks(), settings_), out_);
+    write_ae_events(measure::cluster_events(solver_.cracks(), settings_), out_);
   }
   void save(checkpoint::OutArchive&) const override {}
 
  private:
-  const RunView& view_;
+  const solver::Solver& solver_;
   measure::AeSettings settings_;
   std::filesystem::path out_;
 };
