@@ -17,6 +17,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include "cases/cases.hpp"
@@ -103,15 +104,17 @@ int write_undamped_energy(std::ostream& out, long steps, const std::filesystem::
     for (const double sf : {0.8, 0.4, 0.2, 0.1}) {
       const UndampedEnergy e = undamped_energy(static_cast<long>(100000 * 0.8 / sf), sf);
       const std::string order =
-          ladder.rungs.empty() ? std::string("-")
-                               : fmt::format("{:.2f}", std::log2(ladder.rungs.back().error / e.shadow));
+          ladder.rungs.empty()
+              ? std::string("-")
+              : fmt::format("{:.2f}", std::log2(ladder.rungs.back().error / e.shadow));
       out << fmt::format("| {:g}{} | {} | {:.3g} | {:.3g} | {} | {:.1f} s |\n", sf,
                          sf == 0.8 ? " *" : "", e.steps, e.shadow, e.drift, order, e.seconds);
       ladder.rungs.push_back({e.dt, e.shadow, e.shadow, e.seconds, sf == 0.8});
     }
     const UndampedEnergy n = undamped_energy(100000, 0.8, 0.0);
-    out << fmt::format("| 0.8, jks = 0 (normal springs only) | {} | {:.3g} | {:.3g} | - | {:.1f} s |\n",
-                       n.steps, n.shadow, n.drift, n.seconds);
+    out << fmt::format(
+        "| 0.8, jks = 0 (normal springs only) | {} | {:.3g} | {:.3g} | - | {:.1f} s |\n", n.steps,
+        n.shadow, n.drift, n.seconds);
     out << "\nObserved order of the largest deviation in the time step: " << order_text(ladder)
         << ".\n";
     if (cost_accuracy_plot(ladder, dir, source_dir, "energy_ladder"))
@@ -140,30 +143,24 @@ int main(int argc, char** argv) {
   bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false,
        grains_only = false, speeds_only = false, creep_only = false, corrosion_only = false,
        marble_only = false, dynamics_only = false;
+  // Each flag and the parts it asks for.
+  const std::map<std::string, std::vector<bool*>, std::less<>> options{
+      {"--analytic-only", {&analytic_only}},
+      {"--ladders", {&model_ladders_wanted, &deformable_ladder_wanted}},
+      {"--deformable-ladder", {&deformable_ladder_wanted}},
+      {"--grains-only", {&grains_only}},
+      {"--speeds-only", {&speeds_only}},
+      {"--creep-only", {&creep_only}},
+      {"--corrosion-only", {&corrosion_only}},
+      {"--dynamics-only", {&dynamics_only}},
+      {"--marble-only", {&marble_only}}};
   for (int i = 4; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--analytic-only") {
-      analytic_only = true;
-    } else if (flag == "--ladders") {
-      model_ladders_wanted = deformable_ladder_wanted = true;
-    } else if (flag == "--deformable-ladder") {
-      deformable_ladder_wanted = true;
-    } else if (flag == "--grains-only") {
-      grains_only = true;
-    } else if (flag == "--speeds-only") {
-      speeds_only = true;
-    } else if (flag == "--creep-only") {
-      creep_only = true;
-    } else if (flag == "--corrosion-only") {
-      corrosion_only = true;
-    } else if (flag == "--dynamics-only") {
-      dynamics_only = true;
-    } else if (flag == "--marble-only") {
-      marble_only = true;
-    } else {
+    const auto option = options.find(std::string_view(argv[i]));
+    if (option == options.end()) {
       std::fprintf(stderr, "unknown option '%s'\n", argv[i]);
       return 2;
     }
+    for (bool* wanted : option->second) *wanted = true;
   }
   if (speeds_only) {
     const std::vector<SpeedRun> runs = quasi_static_speed_runs(argv[1], argv[2]);
