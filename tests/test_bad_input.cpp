@@ -502,3 +502,10 @@ TEST(BadInput, QuietBoundaryInputSideAmongTheAbsorbingSidesIsRejected) {
   EXPECT_TRUE(rejected("quiet_input_twice", text, "quiet_boundary.input_side",
                        line_of(text, "input_side"), "absorbs as well"));
 }
+
+TEST(BadInput, NonPositiveAcousticEmissionRadiusIsRejected) {
+  const std::string text =
+      replace(good_model, "[[stage]]", "[output]\nae_radius = -1e-3\n[[stage]]");
+  EXPECT_TRUE(
+      rejected("ae_radius", text, "output.ae_radius", line_of(text, "ae_radius"), "must be > 0"));
+}
