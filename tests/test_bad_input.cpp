@@ -509,3 +509,43 @@ TEST(BadInput, NonPositiveAcousticEmissionRadiusIsRejected) {
   EXPECT_TRUE(
       rejected("ae_radius", text, "output.ae_radius", line_of(text, "ae_radius"), "must be > 0"));
 }
+
+namespace {
+// The good model with a [shpb] test instead of its stage.
+std::string shpb_model(const std::string& incident_extra = "", const std::string& striker = "0.1") {
+  return replace(good_model, "[[stage]]\nplaten_velocity = 0.05\nend_axial_strain = 0.001\n",
+                 "[shpb]\nstriker_length = " + striker +
+                     "\nstriker_velocity = 5\n[shpb.incident_bar]\nlength = 0.5\n"
+                     "diameter = 0.02\nE = 2e11\ndensity = 7800\ngauges = [0.25]\n" +
+                     incident_extra + "[shpb.transmitted_bar]\nlength = 0.3\ngauges = [0.15]\n");
+}
+}  // namespace
+
+TEST(BadInput, PressureBarModelPassesCheck) {
+  const Outcome o = run_capture("check " + write_model("shpb_good", shpb_model()).string());
+  EXPECT_EQ(o.code, 0) << o.output;
+}
+
+TEST(BadInput, PressureBarGaugeOutsideItsBarIsRejected) {
+  const std::string text = replace(shpb_model(), "gauges = [0.15]", "gauges = [0.45]");
+  EXPECT_TRUE(rejected("shpb_gauge", text, "shpb.transmitted_bar.gauges",
+                       line_of(text, "gauges = [0.45]"), "outside its bar"));
+}
+
+TEST(BadInput, PressureBarShorterThanThePulseIsRejected) {
+  const std::string text = shpb_model("", "0.3");
+  EXPECT_TRUE(rejected("shpb_short_bar", text, "shpb.striker_length",
+                       line_of(text, "striker_length"), "longer than the incident bar"));
+}
+
+TEST(BadInput, PressureBarWithANonPositiveModulusIsRejected) {
+  const std::string text = replace(shpb_model(), "E = 2e11", "E = -2e11");
+  EXPECT_TRUE(rejected("shpb_modulus", text, "shpb.incident_bar.E", line_of(text, "E = -2e11"),
+                       "must be > 0"));
+}
+
+TEST(BadInput, PressureBarWithStagesIsRejected) {
+  const std::string text = shpb_model() + "[[stage]]\nplaten_velocity = 0.05\n";
+  EXPECT_TRUE(
+      rejected("shpb_stages", text, "stage", line_of(text, "[[stage]]"), "its own load path"));
+}

@@ -100,6 +100,11 @@ TEST(Resume, CorrosionStageStoppedMidFatigueMatchesTheUninterruptedRun) {
                                                 {9020, 20000, 60000, 130000}));
 }
 
+TEST(Resume, PressureBarTestStoppedMidImpactMatchesTheUninterruptedRun) {
+  // shpb_small: 885 steps; the stops fall before and after the peak (step ~650).
+  EXPECT_NO_FATAL_FAILURE(expect_resume_matches("shpb", kModels + "shpb_small.toml", {300, 700}));
+}
+
 TEST(Resume, DeformableRunMatchesTheUninterruptedRun) {
   EXPECT_NO_FATAL_FAILURE(
       expect_resume_matches("deformable", kModels + "deformable_small.toml", {1200, 3000}));

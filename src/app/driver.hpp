@@ -11,7 +11,19 @@
 #include "vorodec/checkpoint/archive.hpp"
 #include "vorodec/measure/specimen.hpp"
 
+namespace vorodec::loading {
+class ElasticBar;
+}
+
 namespace vorodec::app {
+
+// A pressure-bar test's bars, for the outputs (app/shpb_output).
+struct BarsView {
+  const io::ShpbConfig& cfg;
+  const loading::ElasticBar& incident;
+  const loading::ElasticBar& transmitted;
+  double specimen_width, specimen_length;  // m, initial
+};
 
 // What observers read of a run, after a step or a stage transition.
 struct RunView {
@@ -24,6 +36,7 @@ struct RunView {
   bool creep_stages;       // the load path has creep stages (time is also told in days)
   bool corrosion_stages;   // the load path has corrosion stages (their clock is told too)
   double corrosion_time;   // s, the corrosion clock of the current or last corrosion stage
+  const BarsView* bars = nullptr;  // a pressure-bar test's
 };
 
 // When to sample: a history row, an output frame (VTK and rose.csv), under this label.

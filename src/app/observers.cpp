@@ -1,6 +1,7 @@
 #include "observers.hpp"
 
 #include "ae_output.hpp"
+#include "shpb_output.hpp"
 #include "vorodec/checkpoint/archive_io.hpp"
 #include "vorodec/measure/grain_cracks.hpp"
 #include "vorodec/model/contact_geometry.hpp"
@@ -297,6 +298,20 @@ class AeObserver final : public Observer {
   std::filesystem::path out_;
 };
 
+// gauges.csv and bars.csv of a pressure-bar test, rewritten whole at each flush from the bars'
+// histories (the driver's state).
+class BarsObserver final : public Observer {
+ public:
+  BarsObserver(const BarsView& bars, std::filesystem::path out)
+      : bars_(bars), out_(std::move(out)) {}
+  void flush() override { write_bars(bars_, out_); }
+  void save(checkpoint::OutArchive&) const override {}
+
+ private:
+  const BarsView& bars_;  // the driver's, which outlives the observers' run
+  std::filesystem::path out_;
+};
+
 }  // namespace
 
 Observers make_observers(const RunView& view, const DamageOutput& damage,
@@ -307,6 +322,7 @@ Observers make_observers(const RunView& view, const DamageOutput& damage,
   o.add(std::make_unique<CrackObserver>(view, out, resume));
   o.add(std::make_unique<FrameObserver>(damage, out, write_vtk, resume));
   o.add(std::make_unique<AeObserver>(view, ae, out));
+  if (view.bars) o.add(std::make_unique<BarsObserver>(*view.bars, out));
   return o;
 }
 

@@ -128,7 +128,7 @@ void QuasiStaticDriver::advance(Observers& observers) {
           stage().name, r.time, e.what());
       solver_.set_crack_clock(std::numeric_limits<double>::quiet_NaN());
     }
-    restore_good_state();
+    good_.restore(model_);
     observers.sample(view(), {"unstable", false, true});
     phase_ = Phase::done;
   }
@@ -192,7 +192,7 @@ void QuasiStaticDriver::step(Observers& observers) {
   state_ = measure::measure_specimen(model_, boundary_, solver_);
   if (solver_.steps() % 100 == 0) {
     solver_.check_stability();
-    keep_good_state();
+    good_.keep(model_);
   }
   outcome_.peak = std::max(outcome_.peak, state_.axial_stress);
   outcome_.trough = std::min(outcome_.trough, state_.axial_stress);
@@ -268,24 +268,6 @@ void QuasiStaticDriver::end_stage(Observers& observers) {
   }
   si_ = next;
   phase_ = Phase::stage_start;
-}
-
-void QuasiStaticDriver::keep_good_state() {
-  good_x_ = model_.blocks.x;
-  good_y_ = model_.blocks.y;
-  good_t_ = model_.blocks.theta;
-  good_gx_ = model_.zoning.x;
-  good_gy_ = model_.zoning.y;
-}
-
-void QuasiStaticDriver::restore_good_state() {
-  if (good_x_.empty()) return;
-  model_.blocks.x = good_x_;
-  model_.blocks.y = good_y_;
-  model_.blocks.theta = good_t_;
-  model_.zoning.x = good_gx_;
-  model_.zoning.y = good_gy_;
-  model::refresh_world(model_);  // the frame and the damage measures read world positions
 }
 
 ProgressReport QuasiStaticDriver::progress() const {
@@ -370,7 +352,7 @@ void QuasiStaticDriver::state(Archive& ar) {
   if (corrosion) ar(*corrosion_);
   stage_reports(ar, outcome_.corrosion);
   stage_reports(ar, outcome_.creep);
-  ar(pod(good_x_), pod(good_y_), pod(good_t_), pod(good_gx_), pod(good_gy_), resume_at_, stop_);
+  ar(good_, resume_at_, stop_);
   ar(outcome_.exit_code, outcome_.status, outcome_.peak, outcome_.trough, pod(stalled),
      outcome_.implicit_start);
   phase_ = static_cast<Phase>(phase);

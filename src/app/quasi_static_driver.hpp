@@ -7,6 +7,7 @@
 #include "corrosion_control.hpp"
 #include "creep_control.hpp"
 #include "driver.hpp"
+#include "good_state.hpp"
 #include "vorodec/io/model_file.hpp"
 #include "vorodec/loading/boundary.hpp"
 #include "vorodec/loading/quiet_boundary.hpp"
@@ -39,8 +40,6 @@ class QuasiStaticDriver final : public Driver {
   void step(Observers& observers);
   void end_stage(Observers& observers);
   bool corrosion_step(Observers& observers);  // after a step of a corrosion stage: it ended
-  void keep_good_state();
-  void restore_good_state();
   const loading::Stage& stage() const { return cfg_.load_path.stages[si_]; }
 
   const io::ModelConfig& cfg_;
@@ -61,8 +60,7 @@ class QuasiStaticDriver final : public Driver {
   measure::SpecimenState state_;
   double v_ = 0;               // m/s, top platen
   double stage_fraction_ = 0;  // largest progress fraction of the stage so far
-  // The last state that passed the stability check: blocks, then gridpoints.
-  std::vector<double> good_x_, good_y_, good_t_, good_gx_, good_gy_;
+  GoodState good_;
   int resume_at_ = -1;  // a stalled cyclic block resumes here after its unloading
   bool stop_ = false;   // the step limit was reached
   DriverOutcome outcome_;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "ae_output.hpp"
+#include "shpb_output.hpp"
 #include "vorodec/io/atomic_file.hpp"
 #include "vorodec/io/csv_writer.hpp"
 #include "vorodec/measure/failure_stages.hpp"
@@ -121,7 +122,8 @@ std::string corrosion_json(const io::ModelConfig& cfg, const RunSummary& s) {
 
 void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg,
                    const RunSummary& s, std::size_t initial_contacts, double dt, std::size_t broken,
-                   const std::string& grains, const std::string& acoustic_emission) {
+                   const std::string& grains, const std::string& acoustic_emission,
+                   const std::string& shpb) {
   const auto& f = s.failure_stages;
   const std::string stages =
       f.valid ? fmt::format(
@@ -140,7 +142,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
           "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
           "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n{}  \"failure_rate\": {:.6g},\n"
           "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
-          "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}{}{}{}\n}}\n",
+          "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}{}{}{}{}\n}}\n",
           cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
           s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
           grains, initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
@@ -150,7 +152,7 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
                                 s.zones, s.zone_stress_xx, s.zone_stress_yy, s.zone_stress_xy)
                   : std::string(),
           implicit_json(s.implicit_start), creep_json(cfg, s), corrosion_json(cfg, s),
-          acoustic_emission));
+          acoustic_emission, shpb));
 }
 
 }  // namespace
@@ -207,7 +209,8 @@ RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve 
       out / "summary.json", cfg, summary, solver.initial_bonded_contacts(), solver.dt(),
       summary.cracks_tensile + summary.cracks_shear,
       grain_summary(cfg, specimen, measure::grain_cracks(solver.cracks(), specimen.block_grain)),
-      ae_json(measure::cluster_events(solver.cracks(), ae), ae));
+      ae_json(measure::cluster_events(solver.cracks(), ae), ae),
+      view.bars ? shpb_json(*view.bars, solver, model) : std::string());
   return summary;
 }
 

@@ -12,6 +12,7 @@
 #include "progress.hpp"
 #include "quasi_static_driver.hpp"
 #include "results.hpp"
+#include "shpb_driver.hpp"
 #include "vorodec/app/simulation.hpp"
 #include "vorodec/checkpoint/archive_io.hpp"
 #include "vorodec/checkpoint/checkpoint_file.hpp"
@@ -40,6 +41,19 @@ std::uint32_t hash_of(const io::ModelConfig& cfg, const std::vector<io::Override
   return checkpoint::model_hash(cfg.sources, flatten(overrides));
 }
 
+// The model file's load path: [shpb] or the [[stage]]s.
+std::unique_ptr<Driver> make_driver(const io::ModelConfig& cfg, model::Model& model,
+                                    solver::Solver& solver,
+                                    const loading::SpecimenBoundary& boundary,
+                                    const geometry::Tessellation& specimen, long step_limit,
+                                    bool from_option) {
+  if (cfg.shpb)
+    return std::make_unique<ShpbDriver>(cfg, model, solver, boundary, specimen, step_limit,
+                                        from_option);
+  return std::make_unique<QuasiStaticDriver>(cfg, model, solver, boundary, specimen, step_limit,
+                                             from_option);
+}
+
 // Everything one run holds, fresh or resumed.
 struct Run {
   const io::ModelConfig& cfg;
@@ -51,7 +65,7 @@ struct Run {
   DamageOutput damage;
   measure::AeSettings ae;
   Curve curve;
-  QuasiStaticDriver driver;
+  std::unique_ptr<Driver> driver;
   Observers observers;
   Progress progress;
   Clock::time_point wall0 = Clock::now(), last_checkpoint = wall0;
@@ -69,8 +83,8 @@ struct Run {
         boundary(*prepared.model),
         damage(*prepared.model, c.output.damage_grid_cell),
         ae(ae_settings(c, damage.mean_block_size(), prepared.model->thickness)),
-        driver(c, *prepared.model, *prepared.solver, boundary, t,
-               o.max_steps > 0 ? o.max_steps : c.max_steps, o.max_steps > 0),
+        driver(make_driver(c, *prepared.model, *prepared.solver, boundary, t,
+                           o.max_steps > 0 ? o.max_steps : c.max_steps, o.max_steps > 0)),
         progress(o.progress) {}
 
   double wall_seconds() const {
@@ -87,7 +101,7 @@ struct Run {
                                                     [&](checkpoint::OutArchive& ar) {
                                                       model::save_state(ar, *prepared.model);
                                                       prepared.solver->save(ar);
-                                                      driver.save(ar);
+                                                      driver->save(ar);
                                                       observers.save(ar);
                                                     });
     ++checkpoints;
@@ -120,21 +134,21 @@ struct Run {
   RunSummary execute() {
     // From here a signal stops the run at its next step with a checkpoint; before, it ends it.
     stop_on_signals();
-    while (!driver.finished()) {
-      if (driver.resumable()) {
+    while (!driver->finished()) {
+      if (driver->resumable()) {
         const auto [write, stop] = checkpoint_due();
         if (write) write_checkpoint();
         if (stop) return stopped();
       }
-      driver.advance(observers);
-      observers.after_advance(driver.view());
-      if (progress.due()) progress.show(driver.progress());
+      driver->advance(observers);
+      observers.after_advance(driver->view());
+      if (progress.due()) progress.show(driver->progress());
     }
     progress.finish();
     report_checkpoints();
     observers.flush();
-    RunSummary s =
-        write_results(cfg, driver.view(), curve, driver.outcome(), ae, wall_seconds(), options.out);
+    RunSummary s = write_results(cfg, driver->view(), curve, driver->outcome(), ae, wall_seconds(),
+                                 options.out);
     std::error_code ec;
     fs::remove(options.out / kCheckpointFile, ec);  // a finished run has nothing to resume
     return s;
@@ -184,7 +198,7 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   run.header = {VORODEC_VERSION,    fs::absolute(cfg.file).string(),
                 flatten(overrides), hash_of(cfg, overrides),
                 options.max_steps,  options.write_vtk};
-  run.observers = make_observers(run.driver.view(), run.damage, run.ae, options.out,
+  run.observers = make_observers(run.driver->view(), run.damage, run.ae, options.out,
                                  options.write_vtk, run.curve, nullptr);
   return run.execute();
 }
@@ -216,9 +230,9 @@ RunSummary resume_run(const fs::path& dir, long stop_at_step, bool progress) {
     checkpoint::InArchive ar(state);
     model::load_state(ar, *run.prepared.model);
     run.prepared.solver->load(ar);
-    run.driver.load(ar);
+    run.driver->load(ar);
     run.observers =
-        make_observers(run.driver.view(), run.damage, run.ae, dir, h.write_vtk, run.curve, &ar);
+        make_observers(run.driver->view(), run.damage, run.ae, dir, h.write_vtk, run.curve, &ar);
   } catch (const std::exception& e) {  // a state that does not fit the model, or spoilt outputs
     throw checkpoint::CheckpointError(
         fmt::format("{}: cannot continue from it: {}", (dir / kCheckpointFile).string(), e.what()));

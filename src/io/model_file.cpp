@@ -627,6 +627,9 @@ toml::table load(const std::filesystem::path& file, int depth,
         depth >= 8 ? "more than 8 nested base files" : "no such file: " + path.string()));
   toml::table merged = load(path, depth + 1, sources);
   t.erase("base");
+  // A load path replaces the base's: [shpb] its [[stage]]s, [[stage]]s its [shpb].
+  if (t.contains("shpb")) merged.erase("stage");
+  if (t.contains("stage")) merged.erase("shpb");
   merge_into(merged, std::move(t));
   return merged;
 }
@@ -766,6 +769,58 @@ void check_lengths(const toml::table& root, const ModelConfig& cfg) {
   }
 }
 
+// [shpb] with [shpb.incident_bar] and [shpb.transmitted_bar]; the transmitted bar takes the
+// incident bar's diameter, E and density unless it gives its own.
+ShpbConfig read_shpb(TomlSection sec) {
+  ShpbConfig s;
+  const auto bar = [&](TomlSection b, const loading::BarProperties* like,
+                       std::vector<double>& gauges) {
+    loading::BarProperties p;
+    p.length = b.positive("length", laws::required);
+    p.width = b.positive("diameter", like ? like->width : laws::required);
+    p.youngs_modulus = b.positive("E", like ? like->youngs_modulus : laws::required);
+    p.density = b.positive("density", like ? like->density : laws::required);
+    const std::string free_end = "free";
+    const std::string end = b.string("far_end", &free_end);
+    if (end != "free" && end != "quiet")
+      b.fail("far_end", "\"free\" or \"quiet\" (viscous, non-reflecting)");
+    p.quiet_far_end = end == "quiet";
+    gauges = b.numbers("gauges");
+    for (const double x : gauges)
+      if (!(x > 0 && x < p.length))
+        b.fail("gauges", fmt::format("a gauge at {} m is outside its bar (0, {} m) from the face",
+                                     x, p.length));
+    b.finish();
+    return p;
+  };
+  s.incident = bar(sec.sub("incident_bar"), nullptr, s.incident_gauges);
+  s.transmitted = bar(sec.sub("transmitted_bar"), &s.incident, s.transmitted_gauges);
+  s.striker_length = sec.positive("striker_length", laws::required);
+  s.striker_velocity = sec.positive("striker_velocity", laws::required);
+  const double pulse = 2.0 * s.striker_length / s.incident.wave_speed();
+  if (2.0 * s.striker_length >= s.incident.length)
+    sec.fail("striker_length",
+             fmt::format("the pulse (2 x striker_length = {} m) is longer than the incident bar "
+                         "({} m): incident and reflected waves overlap everywhere on it",
+                         2.0 * s.striker_length, s.incident.length));
+  for (const double x : s.incident_gauges)
+    if (x < s.striker_length)
+      sec.fail("striker_length",
+               fmt::format("the incident gauge at {} m is closer to the face than half the "
+                           "pulse ({} m): its incident and reflected waves overlap",
+                           x, s.striker_length));
+  s.rise_time = sec.non_negative("rise_time", 0.0);
+  if (2.0 * s.rise_time > pulse)
+    sec.fail("rise_time", fmt::format("the rise and the fall ({} s each) take longer than the "
+                                      "pulse (2 x striker_length / c0 = {} s)",
+                                      s.rise_time, pulse));
+  s.duration = sec.positive("duration", 2.0 * pulse);
+  s.record_interval = sec.positive("record_interval", pulse / 1000.0);
+  s.equilibrium_tolerance = sec.positive("equilibrium_tolerance", 0.05);
+  sec.finish();
+  return s;
+}
+
 void read_root(const toml::table& root, ModelConfig& cfg) {
   const std::filesystem::path& file = cfg.file;
   TomlSection top(root, "", file.string());
@@ -901,13 +956,24 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
     l.finish();
   }
   if (top.has("corrosion")) read_corrosion(top.sub("corrosion"), top, cfg);
-  const toml::node* stages = top.node("stage");
-  if (!stages || !stages->is_array_of_tables())
-    top.fail("stage", "at least one [[stage]] table is required");
-  const toml::array& list = *stages->as_array();
-  for (std::size_t i = 0; i < list.size(); ++i)
-    read_stages(TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), file.string()), i,
-                cfg.load_path.stages, cfg);
+  if (top.has("shpb")) {
+    if (top.has("stage"))
+      top.fail("stage", "a [shpb] test is its own load path: leave out the [[stage]] tables");
+    if (cfg.load_path.confining_stress > 0)
+      top.fail("loading", "a [shpb] test has no confinement: leave out confining_stress");
+    if (cfg.solver.time_step > 0)
+      TomlSection(*root["solver"].as_table(), "solver", file.string())
+          .fail("time_step", "density scaling would change the inertia a [shpb] test measures");
+    cfg.shpb = read_shpb(top.sub("shpb"));
+  } else {
+    const toml::node* stages = top.node("stage");
+    if (!stages || !stages->is_array_of_tables())
+      top.fail("stage", "at least one [[stage]] table (or a [shpb] test) is required");
+    const toml::array& list = *stages->as_array();
+    for (std::size_t i = 0; i < list.size(); ++i)
+      read_stages(TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), file.string()), i,
+                  cfg.load_path.stages, cfg);
+  }
 
   if (top.has("quiet_boundary")) {
     TomlSection q = top.sub("quiet_boundary");
@@ -955,6 +1021,7 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
       q.fail("sides", "name the absorbing sides (or an input_side)");
     if (cfg.deformable.enabled)
       q.fail("sides", "quiet boundaries need rigid blocks ([blocks] deformable = false)");
+    if (cfg.shpb) q.fail("sides", "a [shpb] test's bars are its boundaries: no quiet boundary");
     q.finish();
     cfg.quiet_boundary = qb;
   }

@@ -209,6 +209,7 @@ void Solver::step() {
       detect(false);
   }
   contact_forces();
+  if (face_control_) face_control_();
   integrate();
   if (!model_.zoning.empty()) integrate_gridpoints();
   time_ += dt_;
@@ -450,8 +451,10 @@ void Solver::check_stability() const {
     if (c.gap < -limit)
       throw InstabilityError(fmt::format(
           "contact overlap too great between blocks {} and {}: {:.3g} m > d/2 = {:.3g} m at step {}"
-          " (t = {:.6g} s); loading too fast, time step too large or stiffness too low",
-          c.a, c.b, -c.gap, limit, steps_, time_));
+          " (t = {:.6g} s; the contact is {:.3g} m long, {}, and carries {:.3g} N/m); loading too "
+          "fast, time step too large or stiffness too low",
+          c.a, c.b, -c.gap, limit, steps_, time_, c.length,
+          c.bonded && c.state <= model::ContactState::slipping ? "bonded" : "not bonded", c.fn));
   }
   const double supplied = energy_.boundary_work + energy_.body_work;
   const double ke = kinetic_energy();

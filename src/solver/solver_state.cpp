@@ -6,7 +6,8 @@ namespace vorodec::solver {
 
 // A member added to Solver is either state a checkpoint carries (save and load it in Solver::state)
 // or comes again from the model file or the loaded state (say so there); then update these sizes.
-static_assert(sizeof(Solver) == 784, "Solver changed: see Solver::state");
+// face_control_ is the driver's, set again when it is made.
+static_assert(sizeof(Solver) == 816, "Solver changed: see Solver::state");
 
 template <class Archive>
 void Solver::state(Archive& ar) {

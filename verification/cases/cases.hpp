@@ -1,6 +1,8 @@
 #pragma once
 // Verification cases: each runs one scene against its analytic or published reference and
 // returns what it measured. The unit tests assert on them; verification/run.sh reports them.
+#include <array>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -59,6 +61,11 @@ std::vector<CaseResult> deformable_column(double zone_size);
 std::vector<CaseResult> a9_row_of_blocks();
 std::vector<CaseResult> quiet_boundary_absorption();
 std::vector<CaseResult> a9_voronoi_bar();
+
+// A12 (verification/cases/shpb_cases.cpp, in-process, milliseconds): the exact bars against the
+// striker's analytic pulse, and full transmission from one bar to another.
+std::vector<CaseResult> a12_exact_bar();
+std::vector<CaseResult> a12_bar_on_bar();
 // The row with quiet ends and no damping for `steps` steps after the pulse (1e6: about a minute).
 CaseResult quiet_row_long_run(long steps);
 
@@ -171,5 +178,23 @@ struct NamedCase {
   std::function<CaseResult()> run;
 };
 std::vector<NamedCase> analytic_cases();
+
+// B5 under impact: models/shpb_granite.toml at striker speeds 5-50 m/s, the static strength from
+// models/ucs_granite.toml, and the dynamic strength at 10 m/s against the time step. Minutes.
+struct ShpbRun {
+  double speed = 0, seconds = 0;
+  int exit_code = -1;
+  std::string status;
+  double strength = 0, rate = 0, eta_loading = 0, eta_peak = 0, strain_at_peak = 0;
+  bool class_two = false;
+  std::array<double, 4> crack_share{};  // of crack length, in measure::kCrackClassNames' order
+};
+struct ShpbVerification {
+  double static_strength = 0;  // Pa
+  std::vector<ShpbRun> runs;
+  Ladder ladder;
+};
+ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::string& binary,
+                                 const std::filesystem::path& work);
 
 }  // namespace vorodec::verification

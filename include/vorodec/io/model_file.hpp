@@ -12,6 +12,7 @@
 #include "vorodec/laws/contact_law.hpp"
 #include "vorodec/laws/stress_corrosion.hpp"
 #include "vorodec/loading/load_path.hpp"
+#include "vorodec/loading/pressure_bar.hpp"
 #include "vorodec/loading/quiet_boundary.hpp"
 #include "vorodec/solver/solver.hpp"
 
@@ -89,6 +90,20 @@ struct QuietBoundaryConfig {
   bool input_shear = false;                 // along the side, not into it
 };
 
+// [shpb]: a split Hopkinson pressure bar test instead of [[stage]]s (loading/pressure_bar.hpp,
+// PHYSICS 15): a striker hits the incident bar, whose face is the top platen; the transmitted
+// bar's face is the bottom platen. Time 0 is the pulse's arrival at the specimen.
+struct ShpbConfig {
+  loading::BarProperties incident, transmitted;
+  std::vector<double> incident_gauges, transmitted_gauges;  // m from the specimen face
+  double striker_length = 0;    // m, of the incident bar's material
+  double striker_velocity = 0;  // m/s
+  double rise_time = 0;         // s, the pulse's linear rise and fall (a pulse shaper); 0: none
+  double duration = 0;          // s of the specimen's loading; 0: twice the pulse's duration
+  double record_interval = 0;   // s between bars.csv rows; 0: the pulse's duration / 1000
+  double equilibrium_tolerance = 0.05;  // -, |eta| of "in equilibrium"
+};
+
 struct OutputSettings {
   long history_steps = 200;       // steps between history rows
   long vtk_steps = 20000;         // steps between VTK frames (also at stage ends)
@@ -136,6 +151,7 @@ struct ModelConfig {
   std::optional<GrainConfig> grains;  // grain-based specimen
   std::optional<CorrosionConfig> corrosion;
   std::optional<QuietBoundaryConfig> quiet_boundary;
+  std::optional<ShpbConfig> shpb;  // the load path is the bars' (no stages)
   LawChoice platens;            // platen to specimen
   bool platens_bonded = false;  // glued to the specimen (direct tension)
   solver::SolverSettings solver;

@@ -2,6 +2,7 @@
 // Explicit central-difference integration of rigid blocks and of the gridpoints of deformable
 // blocks (src/solver/gridpoints.cpp) with Cundall local damping (PHYSICS 1.3, 5.1, 6, 7). Each
 // step: contact geometry -> laws -> block and gridpoint forces -> damping -> integration.
+#include <functional>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -97,6 +98,9 @@ class Solver {
   void set_bond(std::size_t i, const laws::BondView& b, double fn, double fs);
   // Breaks contact i's bond: a crack of `type` at `time` s (the corrosion clock).
   void break_bond(std::size_t i, laws::ContactEvent type, double time);
+  // Called in every step between the contact forces and the integration: prescribed velocities
+  // that follow this step's contact forces (a pressure bar's face). Empty: nothing.
+  void set_face_control(std::function<void()> f) { face_control_ = std::move(f); }
   // Cracks of the following steps are stamped with this time (s) instead of the solver's: a
   // corrosion stage's clock. NaN: the solver's time again.
   void set_crack_clock(double t) { crack_clock_ = t; }
@@ -139,6 +143,7 @@ class Solver {
   double dt_ = 0.0, critical_dt_ = 0.0, time_ = 0.0;
   double crack_clock_ = std::numeric_limits<double>::quiet_NaN();
   bool fixed_step_warned_ = false;
+  std::function<void()> face_control_;
   long steps_ = 0, last_detection_ = 0;
   std::size_t initial_bonded_ = 0, detections_ = 0;
 };

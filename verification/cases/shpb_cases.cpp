@@ -1,0 +1,196 @@
+// Split Hopkinson pressure bars (VERIFICATION A12, B5; PHYSICS 15): the exact bars against the
+// striker's analytic pulse, full transmission from bar to bar, and the granite under impact.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "cases.hpp"
+#include "model_runs.hpp"
+#include "vorodec/loading/pressure_bar.hpp"
+#include "vorodec/measure/three_wave.hpp"
+
+namespace vorodec::verification {
+
+namespace {
+
+// Steel bars with the paper's wave speed (5200 m/s), 50 mm wide.
+loading::BarProperties steel_bar(double length) {
+  return {length, 0.05, 7800.0 * 5200.0 * 5200.0, 7800.0, true};
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Duration of a pulse between its half-amplitude crossings, linear between samples.
+double pulse_duration(const std::vector<double>& t, const std::vector<double>& s, double amp) {
+  double up = NAN, down = NAN;
+  for (std::size_t k = 1; k < s.size(); ++k) {
+    const double a = s[k - 1] - 0.5 * amp, b = s[k] - 0.5 * amp;
+    const double at = t[k - 1] + (t[k] - t[k - 1]) * a / (a - b);
+    if (a < 0 && b >= 0 && std::isnan(up)) up = at;
+    if (a >= 0 && b < 0 && !std::isnan(up)) down = at;
+  }
+  return down - up;
+}
+
+// A string value in summary.json ("key": "value").
+std::string json_string(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": \"");
+  if (at == std::string::npos) return "";
+  const auto begin = at + key.size() + 5;
+  return json.substr(begin, json.find('"', begin) - begin);
+}
+
+}  // namespace
+
+std::vector<CaseResult> a12_exact_bar() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const double ls = 0.27, v = 10.0, h = 1e-7;  // m, m/s, s (sampling, not aligned to the pulse)
+  const loading::BarProperties p = steel_bar(1.5);
+  const double c = p.wave_speed(), sigma0 = 0.5 * p.impedance() * v, duration = 2.0 * ls / c;
+  const auto pulse = loading::striker_pulse(p, ls, v, -p.length / c);
+  loading::ElasticBar bar(p, pulse);
+  // The face is free: it carries no stress, and reflects the pulse.
+  for (double t = 0; t < 3.0 * duration; t += h) bar.record_face(t, 0.0);
+  const double x = 0.75;  // m from the face: the incident pulse passes at t - x / c
+  std::vector<double> t, s;
+  double worst = 0, plateau = 0;
+  std::size_t n = 0;
+  for (double tk = -p.length / c; tk < -x / c + duration + 1e-5; tk += h) {
+    const double incident = bar.towards_face(x, tk);
+    t.push_back(tk);
+    s.push_back(bar.stress(x, tk));
+    // Analytic: the pulse that left the struck end (x = length) at tk - (length - x) / c.
+    worst = std::max(worst, std::abs(incident - pulse(tk - (p.length - x) / c)) / sigma0);
+    if (incident > 0.5 * sigma0) {
+      plateau += incident;
+      ++n;
+    }
+  }
+  plateau /= static_cast<double>(n);
+  const double measured = pulse_duration(t, s, sigma0);
+  const std::string settings = fmt::format(
+      "steel bar 1.5 m, striker {} m at {} m/s, gauge {} m "
+      "from the face, sampled every {:.3g} s",
+      ls, v, x, h);
+  const double sec = seconds_since(t0);
+  return {{"A12", "exact bar: incident stress (Pa)", "rho c0 v / 2 (PHYSICS 15)", sigma0, plateau,
+           std::abs(plateau - sigma0) / sigma0, 0.01, settings, sec},
+          {"A12", "exact bar: pulse duration (s)", "2 L_striker / c0", duration, measured,
+           std::abs(measured - duration) / duration, 0.02,
+           settings + "; half-amplitude crossings, so within one sample", sec},
+          {"A12", "exact bar against the analytic pulse (largest |difference| / (rho c0 v / 2))",
+           "d'Alembert: the struck end's pulse delayed by (L - x) / c0", 0.0, worst, worst, 1e-12,
+           settings, sec}};
+}
+
+std::vector<CaseResult> a12_bar_on_bar() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const double ls = 0.27, v = 10.0, h = 2e-8;
+  const loading::BarProperties pi = steel_bar(1.5), pt = steel_bar(0.75);
+  const double c = pi.wave_speed(), duration = 2.0 * ls / c;
+  loading::ElasticBar in(pi, loading::striker_pulse(pi, ls, v, -pi.length / c));
+  loading::ElasticBar tr(pt, nullptr);
+  // Faces in contact: equal velocities towards each other's face, a common stress, no tension.
+  const double zi = pi.impedance(), zt = pt.impedance();
+  for (double t = 0; t < 2.0 * duration; t += h) {
+    const double s =
+        std::max(0.0, 2.0 * (in.arriving(t) / zi + tr.arriving(t) / zt) / (1.0 / zi + 1.0 / zt));
+    in.record_face(t, s);
+    tr.record_face(t, s);
+  }
+  const double di = 0.75, dt = 0.375;
+  std::vector<double> t, ei, er, et;
+  for (double tk = 0; tk < 2.0 * di / c; tk += h) {
+    t.push_back(tk);
+    ei.push_back(in.stress(di, tk - di / c) / pi.youngs_modulus);
+    er.push_back(in.stress(di, tk + di / c) / pi.youngs_modulus);
+    et.push_back(tr.stress(dt, tk + dt / c) / pt.youngs_modulus);
+  }
+  const measure::BarPair bars{
+      {c, pi.youngs_modulus, pi.width}, {c, pt.youngs_modulus, pt.width}, 0.05, 1e-3};
+  const auto points = measure::three_wave(bars, t, ei, er, et);
+  const measure::DynamicMeasures m = measure::dynamic_measures(bars, points);
+  double worst = 0;
+  for (const auto& p : points) worst = std::max(worst, std::abs(p.eps_t - p.eps_i));
+  worst /= 0.5 * v / c;
+  const std::string settings =
+      "steel bars 1.5 m and 0.75 m, striker 0.27 m at 10 m/s, gauges "
+      "0.75 m and 0.375 m from the faces, three-wave analysis";
+  const double sec = seconds_since(t0);
+  return {{"A12", "bar on bar: transmitted / incident energy", "full transmission", 1.0,
+           m.transmitted_energy / m.incident_energy,
+           std::abs(m.transmitted_energy / m.incident_energy - 1.0), 1e-9, settings, sec},
+          {"A12", "bar on bar: largest |eps_T - eps_I| / eps_I", "full transmission", 0.0, worst,
+           worst, 1e-9, settings, sec}};
+}
+
+ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::string& binary,
+                                 const std::filesystem::path& work) {
+  ShpbVerification v;
+  const std::filesystem::path src(source_dir);
+  const ModelRun stat = run_model(binary, src / "models/ucs_granite.toml", work / "static");
+  v.static_strength = json_number(stat.summary, "peak_stress_Pa");
+  const std::filesystem::path model = src / "models/shpb_granite.toml";
+  for (const double speed : {5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 50.0}) {
+    const ModelRun r = run_model(binary, model, work / fmt::format("v{}", speed),
+                                 fmt::format("--set shpb.striker_velocity={}", speed));
+    ShpbRun row;
+    row.speed = speed;
+    row.exit_code = r.exit_code;
+    row.seconds = r.seconds;
+    row.strength = json_number(r.summary, "dynamic_strength_Pa");
+    row.rate = json_number(r.summary, "mean_strain_rate_per_s");
+    row.eta_loading = json_number(r.summary, "eta_loading_max");
+    row.eta_peak = json_number(r.summary, "eta_at_peak");
+    const Table bars = read_table(r.out / "bars.csv");
+    double peak = -1, strain_max = 0, strain_end = 0;
+    for (std::size_t k = 0; k < bars.rows.size(); ++k) {
+      const double e = bars.number(k, "strain"), s = bars.number(k, "stress");
+      if (s > peak) {
+        peak = s;
+        row.strain_at_peak = e;
+      }
+      strain_max = std::max(strain_max, e);
+      strain_end = e;
+    }
+    // Class I: the strain recovers after the peak (the specimen unloads elastically); class
+    // II: it goes on growing past the peak.
+    row.class_two = strain_end > 1.05 * row.strain_at_peak && strain_end >= 0.95 * strain_max;
+    const std::string classes[] = {"intergranular_tensile", "intergranular_shear",
+                                   "transgranular_tensile", "transgranular_shear"};
+    double total = 0;
+    std::array<double, 4> len{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const auto at = r.summary.find("\"" + classes[k] + "\"");
+      len[k] = at == std::string::npos ? NAN : json_number(r.summary.substr(at), "length_m");
+      total += len[k];
+    }
+    for (std::size_t k = 0; k < 4; ++k) row.crack_share[k] = len[k] / total;
+    row.status = r.exit_code == 0 ? "finished" : json_string(r.summary, "status");
+    v.runs.push_back(row);
+  }
+  // Peak dynamic strength at 10 m/s against the time step (safety factor), the finest as
+  // reference.
+  v.ladder.name = "B5: dynamic strength at 10 m/s against the time step";
+  v.ladder.parameter = "safety factor";
+  v.ladder.quantity = "dynamic strength (Pa)";
+  v.ladder.reference = "the finest run (safety factor 0.1)";
+  for (const double sf : {0.8, 0.4, 0.2, 0.1}) {
+    const ModelRun r = run_model(binary, model, work / fmt::format("sf{}", sf),
+                                 fmt::format("--set solver.safety_factor={}", sf));
+    v.ladder.rungs.push_back(
+        {sf, json_number(r.summary, "dynamic_strength_Pa"), 0, r.seconds, sf == 0.8});
+  }
+  v.ladder.reference_value = v.ladder.rungs.back().value;
+  for (auto& rung : v.ladder.rungs)
+    rung.error = std::abs(rung.value - v.ladder.reference_value) / v.ladder.reference_value;
+  v.ladder.rungs.pop_back();
+  return v;
+}
+
+}  // namespace vorodec::verification
