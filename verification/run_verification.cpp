@@ -210,6 +210,17 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
         r.speed, r.rate, r.strength / 1e6, r.strength / v.static_strength, dif(r.rate), r.eta_peak,
         r.eta_loading, r.class_two ? "II" : "I", 100 * r.crack_share[0], 100 * r.crack_share[1],
         100 * r.crack_share[2], 100 * r.crack_share[3], r.exit_code, r.seconds);
+  out << "\nThe pulse's rise time at 10 m/s (the model's 30 us is an assumption: paper 003 gives "
+         "no pulse shape):\n\n| rise time (us) | strength (MPa) | mean rate (1/s) | max eta, half "
+         "peak to peak | eta at peak | equilibrium from (us) | wall time |\n"
+         "|---|---|---|---|---|---|---|\n";
+  for (const ShpbRise& r : v.rises)
+    out << fmt::format("| {:.0f} | {:.1f} | {:.1f} | {:.3f} | {:.3f} | {} | {:.1f} s |\n",
+                       r.rise * 1e6, r.strength / 1e6, r.rate, r.eta_loading, r.eta_peak,
+                       std::isfinite(r.equilibrium_time)
+                           ? fmt::format("{:.1f}", r.equilibrium_time * 1e6)
+                           : std::string("never within 5 %"),
+                       r.seconds);
   const Ladder& l = v.ladder;
   out << fmt::format(
       "\n## {}\n\nReference: {} = {:.6g} Pa. Observed order: {}. `*` marks the "

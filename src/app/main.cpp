@@ -176,8 +176,9 @@ int main(int argc, char** argv) {
         out_dir.empty() ? fs::path("results") / fs::path(model_path).stem() : fs::path(out_dir);
     if (check->parsed()) {
       print_report(specimen, cfg);
-      fmt::print("{}: ok ({} blocks, {} stages)\n", model_path, specimen.blocks.size(),
-                 cfg.load_path.stages.size());
+      fmt::print("{}: ok ({} blocks, {})\n", model_path, specimen.blocks.size(),
+                 cfg.shpb ? std::string("a pressure-bar test")
+                          : fmt::format("{} stages", cfg.load_path.stages.size()));
       return 0;
     }
     if (!prepare_out(out)) return bad_input;

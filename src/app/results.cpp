@@ -205,6 +205,7 @@ RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve 
     (e.type == laws::ContactEvent::tensile_failure ? summary.cracks_tensile
                                                    : summary.cracks_shear)++;
   summary.wall_seconds = wall_seconds;
+  if (view.bars) write_fragments(model, out);
   write_summary(
       out / "summary.json", cfg, summary, solver.initial_bonded_contacts(), solver.dt(),
       summary.cracks_tensile + summary.cracks_shear,

@@ -96,6 +96,13 @@ void write_bars(const BarsView& b, const std::filesystem::path& out) {
   io::write_file_atomically(out / "bars.csv", s);
 }
 
+void write_fragments(const model::Model& model, const std::filesystem::path& out) {
+  std::string csv = "area,equivalent_diameter\n";
+  for (const double a : measure::fragment_areas(model))
+    csv += fmt::format("{:.9g},{:.9g}\n", a, std::sqrt(4.0 * a / M_PI));
+  io::write_file_atomically(out / "fragments.csv", csv);
+}
+
 std::string shpb_json(const BarsView& b, const solver::Solver& solver, const model::Model& model) {
   const auto& cfg = b.cfg;
   const std::vector<measure::ThreeWavePoint> points = analyse(b);

@@ -22,6 +22,10 @@ std::vector<measure::ThreeWavePoint> analyse(const BarsView& bars);
 // Both files, each written whole.
 void write_bars(const BarsView& bars, const std::filesystem::path& out);
 
+// fragments.csv: each fragment's area (m^2, in the plane) and equivalent
+// diameter, largest first, at the end of the test.
+void write_fragments(const model::Model& model, const std::filesystem::path& out);
+
 // ,\n  "shpb": {...} for summary.json: dynamic measures, the energy partition, fragments.
 std::string shpb_json(const BarsView& bars, const solver::Solver& solver,
                       const model::Model& model);

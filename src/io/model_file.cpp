@@ -919,6 +919,9 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
       top.has("contact") ? top.sub("contact") : TomlSection(no_table, "contact", file.string());
   cfg.rounding_length = contact.has("rounding_length") ? contact.positive("rounding_length", 0) : 0;
   cfg.solver.contact_tolerance = contact.has("tolerance") ? contact.positive("tolerance", 0) : 0;
+  cfg.solver.overlap_limit = contact.positive("overlap_limit", 0.5);
+  if (cfg.solver.overlap_limit >= 1)
+    contact.fail("overlap_limit", "must be < 1: at 1 the rounded corner's centre reaches the edge");
   contact.finish();
 
   if (top.has("solver")) {

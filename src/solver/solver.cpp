@@ -446,14 +446,16 @@ void Solver::check_stability() const {
                       "(t = {:.6g} s)",
                       g, z.block[g], steps_, time_));
   }
-  const double limit = 0.5 * model_.rounding_length;
+  const double limit = settings_.overlap_limit * model_.rounding_length;
   for (const auto& c : model_.contacts) {
     if (c.gap < -limit)
       throw InstabilityError(fmt::format(
-          "contact overlap too great between blocks {} and {}: {:.3g} m > d/2 = {:.3g} m at step {}"
+          "contact overlap too great between blocks {} and {}: {:.3g} m > {:.3g} m ({} x the "
+          "rounding "
+          "length, contact.overlap_limit) at step {}"
           " (t = {:.6g} s; the contact is {:.3g} m long, {}, and carries {:.3g} N/m); loading too "
           "fast, time step too large or stiffness too low",
-          c.a, c.b, -c.gap, limit, steps_, time_, c.length,
+          c.a, c.b, -c.gap, limit, settings_.overlap_limit, steps_, time_, c.length,
           c.bonded && c.state <= model::ContactState::slipping ? "bonded" : "not bonded", c.fn));
   }
   const double supplied = energy_.boundary_work + energy_.body_work;

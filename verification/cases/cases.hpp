@@ -189,9 +189,13 @@ struct ShpbRun {
   bool class_two = false;
   std::array<double, 4> crack_share{};  // of crack length, in measure::kCrackClassNames' order
 };
+struct ShpbRise {
+  double rise, strength, rate, eta_loading, eta_peak, equilibrium_time, seconds;
+};
 struct ShpbVerification {
   double static_strength = 0;  // Pa
   std::vector<ShpbRun> runs;
+  std::vector<ShpbRise> rises;  // 10 m/s, the pulse's rise time varied
   Ladder ladder;
 };
 ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::string& binary,

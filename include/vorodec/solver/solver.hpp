@@ -21,6 +21,9 @@ struct SolverSettings {
   double fixed_time_step = 0.0;    // s; > 0: this step, capped at the critical one (warns once)
   model::Point gravity{0.0, 0.0};  // m/s^2
   double contact_tolerance = 0.0;  // m, create within / delete beyond this gap
+  // -, overlap (as a fraction of the rounding length) that stops a run: the corner's arc centre
+  // must stay clear of the other block's edge (the geometry breaks at 1).
+  double overlap_limit = 0.5;
   int max_detection_interval = 200;  // steps between detections at most
 };
 
