@@ -3,6 +3,7 @@
 // state when the driver says so (observers.hpp). The driver never writes a file; an observer
 // never moves a block.
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,18 +12,19 @@
 #include "vorodec/checkpoint/archive.hpp"
 #include "vorodec/measure/specimen.hpp"
 
-namespace vorodec::loading {
-class ElasticBar;
-}
-
 namespace vorodec::app {
 
 // A pressure-bar test's bars, for the outputs (app/shpb_output).
 struct BarsView {
   const io::ShpbConfig& cfg;
-  const loading::ElasticBar& incident;
-  const loading::ElasticBar& transmitted;
+  // Pa, compression +: the stress in each bar at x m from its face (0: the face itself; else a
+  // gauge's position) at t s, time 0 being the pulse's arrival at the specimen.
+  std::function<double(double, double)> incident, transmitted;
   double specimen_width, specimen_length;  // m, initial
+  double recorded_until = 0;               // s: the bars' record ends here
+  // s: how far past a face time the analysis reads the gauges (recorded bars: the gauges'
+  // travel times; exact bars: 0, their later gauge values follow from the faces' record).
+  double reach = 0;
 };
 
 // What observers read of a run, after a step or a stage transition.
@@ -31,11 +33,11 @@ struct RunView {
   const solver::Solver& solver;
   const geometry::Tessellation& specimen;
   const measure::SpecimenState& state;
-  double platen_velocity;  // m/s, top platen, compression +
-  int stage;               // index of the current stage
-  bool creep_stages;       // the load path has creep stages (time is also told in days)
-  bool corrosion_stages;   // the load path has corrosion stages (their clock is told too)
-  double corrosion_time;   // s, the corrosion clock of the current or last corrosion stage
+  double platen_velocity;          // m/s, top platen, compression +
+  int stage;                       // index of the current stage
+  bool creep_stages;               // the load path has creep stages (time is also told in days)
+  bool corrosion_stages;           // the load path has corrosion stages (their clock is told too)
+  double corrosion_time;           // s, the corrosion clock of the current or last corrosion stage
   const BarsView* bars = nullptr;  // a pressure-bar test's
 };
 

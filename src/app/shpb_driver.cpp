@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "observers.hpp"
 #include "vorodec/checkpoint/archive_io.hpp"
@@ -11,7 +12,10 @@ namespace vorodec::app {
 
 // A member added to the driver is either state a checkpoint carries (save and load it in
 // ShpbDriver::state) or comes again from the model file (say so there); then update the size.
-static_assert(sizeof(ShpbDriver) == 832, "ShpbDriver changed: see state()");
+// The quiet ends, the gauges' blocks and the striker's come again from the model.
+static_assert(sizeof(ShpbDriver) == 1272, "ShpbDriver changed: see state()");
+
+using model::Group;
 
 ShpbDriver::ShpbDriver(const io::ModelConfig& cfg, model::Model& model, solver::Solver& solver,
                        const loading::SpecimenBoundary& boundary,
@@ -31,11 +35,77 @@ ShpbDriver::ShpbDriver(const io::ModelConfig& cfg, model::Model& model, solver::
                                        -cfg_.incident.length / cfg_.incident.wave_speed(),
                                        cfg_.rise_time)),
       transmitted_(cfg_.transmitted, nullptr),
-      bars_{cfg_, incident_, transmitted_, boundary.width(), boundary.height()},
+      bars_{cfg_, {}, {}, boundary.width(), boundary.height()},
       state_(measure::measure_specimen(model, boundary, solver)) {
   if (boundary.top_platen() < 0 || boundary.bottom_platen() < 0)
     throw std::runtime_error("a pressure-bar test needs both platens");
+  if (cfg_.block_bars) {
+    set_up_block_bars();
+    return;
+  }
+  bars_.incident = [this](double x, double t) { return incident_.stress(x, t); };
+  bars_.transmitted = [this](double x, double t) { return transmitted_.stress(x, t); };
   solver_.set_face_control([this] { couple(); });
+}
+
+void ShpbDriver::set_up_block_bars() {
+  shift_ = cfg_.incident.length / cfg_.incident.wave_speed();
+  for (const double x : cfg_.incident_gauges)
+    bars_.reach = std::max(bars_.reach, x / cfg_.incident.wave_speed());
+  for (const double x : cfg_.transmitted_gauges)
+    bars_.reach = std::max(bars_.reach, x / cfg_.transmitted.wave_speed());
+  const auto& bl = model_.blocks;
+  // Each bar's blocks from its face outwards: the platen, then by distance from the specimen.
+  const auto column = [&](Group platen, Group bar) {
+    std::vector<std::uint32_t> c;
+    for (std::uint32_t b = 0; b < bl.size(); ++b)
+      if (bl.group[b] == platen || bl.group[b] == bar) c.push_back(b);
+    const double y = bl.y[c.front()];
+    std::sort(c.begin(), c.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return std::abs(bl.y[a] - y) < std::abs(bl.y[b] - y);
+    });
+    return c;
+  };
+  const double h = cfg_.bar_block_length;
+  const auto bar = [&](Group platen, Group group, const std::vector<double>& xs, double sign,
+                       const loading::BarProperties& p, std::optional<loading::QuietBoundary>& q) {
+    const std::vector<std::uint32_t> c = column(platen, group);
+    for (const double x : xs) {
+      const auto j =
+          std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(x / h)), 1, c.size() - 1);
+      gauges_.push_back({x, c[j - 1], c[j], sign, p.youngs_modulus, {}});
+    }
+    if (!p.quiet_far_end) return;
+    const std::uint32_t end = c.back();  // its edge farthest from the specimen
+    std::uint32_t best = bl.corner_begin[end];
+    double far = -1;
+    for (std::uint32_t k = bl.corner_begin[end]; k < bl.corner_begin[end + 1]; ++k) {
+      const double mid = sign * (bl.corner[k].y + bl.corner[bl.next_corner(end, k)].y);
+      if (mid > far) {
+        far = mid;
+        best = k;
+      }
+    }
+    // Dashpots rho c0 per area: the bar's own impedance.
+    q.emplace(std::vector<loading::BoundaryEdge>{{end, best}},
+              loading::QuietSettings{p.density, p.wave_speed(), 0.0});
+  };
+  bar(Group::top_platen, Group::incident_bar, cfg_.incident_gauges, 1.0, cfg_.incident,
+      incident_end_);
+  bar(Group::bottom_platen, Group::transmitted_bar, cfg_.transmitted_gauges, -1.0, cfg_.transmitted,
+      transmitted_end_);
+  for (std::uint32_t b = 0; b < bl.size(); ++b)
+    if (bl.group[b] == Group::striker) striker_.push_back(b);
+  const auto recorded = [this](const loading::WaveHistory& face, bool incident) {
+    return [this, &face, incident](double x, double t) {
+      if (x == 0.0) return face.at(t);
+      for (const BlockGauge& g : gauges_)
+        if (g.x == x && (g.sign > 0) == incident) return g.stress.at(t);
+      return std::nan("");
+    };
+  };
+  bars_.incident = recorded(incident_face_, true);
+  bars_.transmitted = recorded(transmitted_face_, false);
 }
 
 void ShpbDriver::couple() {
@@ -48,6 +118,7 @@ void ShpbDriver::couple() {
   const double s_tr = -solver_.contact_force(bottom).y / cfg_.transmitted.width;
   incident_.record_face(t, s_in);
   transmitted_.record_face(t, s_tr);
+  bars_.recorded_until = t;
   // The step's velocity is the half step's: the face stress extrapolated there.
   const double h_in = coupled_ ? 1.5 * s_in - 0.5 * last_incident_ : s_in;
   const double h_tr = coupled_ ? 1.5 * s_tr - 0.5 * last_transmitted_ : s_tr;
@@ -59,6 +130,23 @@ void ShpbDriver::couple() {
   coupled_ = true;
 }
 
+void ShpbDriver::record_block_bars() {
+  const auto& bl = model_.blocks;
+  const double t = face_time();
+  for (BlockGauge& g : gauges_) {
+    const double u_near = bl.y[g.near] - bl.y0[g.near], u_far = bl.y[g.far] - bl.y0[g.far];
+    g.stress.add(t, g.youngs_modulus * g.sign * (u_near - u_far) / cfg_.bar_block_length);
+  }
+  // The contact forces are those of the step's start.
+  const double t0 = t - solver_.dt();
+  const auto top = static_cast<std::size_t>(boundary_.top_platen());
+  const auto bottom = static_cast<std::size_t>(boundary_.bottom_platen());
+  incident_face_.add(t0, solver_.contact_force_from(top, Group::specimen).y / cfg_.incident.width);
+  transmitted_face_.add(
+      t0, -solver_.contact_force_from(bottom, Group::specimen).y / cfg_.transmitted.width);
+  bars_.recorded_until = t0;
+}
+
 RunView ShpbDriver::view() const {
   const double v = -model_.blocks.vy[static_cast<std::size_t>(boundary_.top_platen())];
   return {model_, solver_, specimen_, state_, v, 0, false, false, 0.0, &bars_};
@@ -67,6 +155,8 @@ RunView ShpbDriver::view() const {
 void ShpbDriver::advance(Observers& observers) {
   try {
     if (phase_ == Phase::start) {
+      for (const std::uint32_t b : striker_) model_.blocks.vy[b] = -cfg_.striker_velocity;
+      solver_.count_initial_kinetic_energy();
       observers.sample(view(), {"impact:start", true, false});
       phase_ = Phase::stepping;
     } else if (phase_ == Phase::stepping) {
@@ -82,13 +172,21 @@ void ShpbDriver::advance(Observers& observers) {
 }
 
 void ShpbDriver::step(Observers& observers) {
-  if (solver_.time() >= cfg_.duration) return finish(observers, "impact:end");
+  // Recorded bars run on until the waves of the test's end have reached the gauges.
+  if (face_time() >= cfg_.duration + bars_.reach) return finish(observers, "impact:end");
   if (solver_.steps() >= step_limit_) {
     outcome_.status = limit_from_option_ ? "stopped at --max-steps" : "step limit";
     outcome_.exit_code = limit_from_option_ ? 0 : 4;
     return finish(observers, "impact:stopped");
   }
+  const double separated = 2.0 * cfg_.striker_length / cfg_.incident.wave_speed();
+  for (auto* end : {&incident_end_, &transmitted_end_})
+    if (*end && (end == &transmitted_end_ || solver_.time() >= separated)) {
+      (*end)->clear_loads(model_);
+      (*end)->apply(model_, solver_.time());
+    }
   solver_.step();
+  if (cfg_.block_bars) record_block_bars();
   state_ = measure::measure_specimen(model_, boundary_, solver_);
   if (solver_.steps() % 100 == 0) {
     solver_.check_stability();
@@ -111,7 +209,7 @@ ProgressReport ShpbDriver::progress() const {
   r.stage_name = "impact";
   r.steps = solver_.steps();
   r.stress = state_.axial_stress;
-  r.fraction = std::clamp(solver_.time() / cfg_.duration, 0.0, 1.0);
+  r.fraction = std::clamp(solver_.time() / (shift_ + cfg_.duration), 0.0, 1.0);
   return r;
 }
 
@@ -119,9 +217,12 @@ template <class Archive>
 void ShpbDriver::state(Archive& ar) {
   using checkpoint::pod;
   int phase = static_cast<int>(phase_);
-  ar(phase, last_incident_, last_transmitted_, coupled_, checkpoint::bytes(state_), good_);
-  for (loading::ElasticBar* b : {&incident_, &transmitted_})
-    ar(pod(b->face_history().times()), pod(b->face_history().values()));
+  ar(phase, last_incident_, last_transmitted_, coupled_, checkpoint::bytes(state_), good_,
+     bars_.recorded_until);
+  std::vector<loading::WaveHistory*> records{
+      &incident_.face_history(), &transmitted_.face_history(), &incident_face_, &transmitted_face_};
+  for (BlockGauge& g : gauges_) records.push_back(&g.stress);
+  for (loading::WaveHistory* h : records) ar(pod(h->times()), pod(h->values()));
   ar(outcome_.exit_code, outcome_.status, outcome_.peak, outcome_.trough);
   phase_ = static_cast<Phase>(phase);
 }

@@ -1,14 +1,22 @@
 #pragma once
-// The split Hopkinson pressure bar test (PHYSICS 15): exact 1D elastic bars (loading/
-// pressure_bar.hpp) whose faces are the platens. In every step the solver's face control reads
-// the specimen's force on each platen, records it as the bar face's stress, and gives the platen
-// the face's velocity for the step. Time 0 is the incident pulse's arrival at the specimen; the
-// test runs for [shpb] duration.
+// The split Hopkinson pressure bar test (PHYSICS 15), with either bar representation:
+// - exact 1D elastic bars (loading/pressure_bar.hpp) whose faces are the platens: in every step
+//   the solver's face control reads the specimen's force on each platen, records it as the bar
+//   face's stress, and gives the platen the face's velocity for the step. Time 0 is the incident
+//   pulse's arrival at the specimen; the bars' earlier history is known exactly.
+// - bars built from blocks (model/build.hpp BlockBars, the platens their first blocks): the
+//   striker's blocks start at its speed, the far ends are quiet boundaries where asked, and the
+//   gauges record the strain of the joint nearest them. The run starts at the impact; its outputs
+//   are shifted by incident length / c0 to the same time 0.
+// The test runs for [shpb] duration after time 0.
+#include <optional>
+
 #include "driver.hpp"
 #include "good_state.hpp"
 #include "vorodec/io/model_file.hpp"
 #include "vorodec/loading/boundary.hpp"
 #include "vorodec/loading/pressure_bar.hpp"
+#include "vorodec/loading/quiet_boundary.hpp"
 
 namespace vorodec::app {
 
@@ -32,11 +40,22 @@ class ShpbDriver final : public Driver {
 
  private:
   enum class Phase : int { start, stepping, done };
+  // A block bar's gauge: the joint between blocks near and far (from the face), its record.
+  struct BlockGauge {
+    double x;  // m from the face
+    std::uint32_t near, far;
+    double sign;  // +1 incident bar (above the specimen), -1 transmitted bar
+    double youngs_modulus;
+    loading::WaveHistory stress;
+  };
   template <class Archive>
   void state(Archive& ar);
   void step(Observers& observers);
   void finish(Observers& observers, const std::string& label);
-  void couple();  // the solver's face control
+  void couple();  // exact bars: the solver's face control
+  void set_up_block_bars();
+  void record_block_bars();  // after a step
+  double face_time() const { return solver_.time() - shift_; }
 
   const io::ShpbConfig& cfg_;
   model::Model& model_;
@@ -46,10 +65,17 @@ class ShpbDriver final : public Driver {
   long step_limit_;
   bool limit_from_option_;
   long history_steps_, vtk_steps_;
+  double shift_ = 0;  // s, solver time of the pulse's arrival (block bars)
 
   loading::ElasticBar incident_, transmitted_;
+  // Block bars: gauges (incident, then transmitted), the faces' stresses, the quiet far ends.
+  std::vector<BlockGauge> gauges_;
+  loading::WaveHistory incident_face_, transmitted_face_;
+  std::vector<std::uint32_t> striker_;
+  // The struck end's dashpot acts once the striker has left (2 L_striker / c0 after the impact).
+  std::optional<loading::QuietBoundary> incident_end_, transmitted_end_;
   BarsView bars_;
-  // Pa, each face's stress in the last step (the half-step extrapolation's); NaN before.
+  // Exact bars: each face's stress in the last step (the half-step extrapolation's).
   double last_incident_ = 0, last_transmitted_ = 0;
   bool coupled_ = false;  // a step has been coupled (the last stresses are set)
   Phase phase_ = Phase::start;

@@ -22,8 +22,9 @@ measure::BarPair pair_of(const BarsView& b) {
 }
 
 // Strain at x m from the face at t s.
-double gauge(const loading::ElasticBar& bar, double x, double t) {
-  return bar.stress(x, t) / bar.properties().youngs_modulus;
+double gauge(const std::function<double(double, double)>& bar, const loading::BarProperties& p,
+             double x, double t) {
+  return bar(x, t) / p.youngs_modulus;
 }
 
 std::string number(double v) {
@@ -39,8 +40,7 @@ double analysis_window(const BarsView& b) {
   if (!in.quiet_far_end) end = std::min(end, 2.0 * (in.length - di) / in.wave_speed());
   if (!tr.quiet_far_end) end = std::min(end, 2.0 * (tr.length - dt) / tr.wave_speed());
   // A run that stopped early (unstable, --max-steps) has no faces' record beyond its end.
-  const auto& times = b.incident.face_history().times();
-  return times.empty() ? 0.0 : std::min(end, times.back());
+  return std::min(end, b.recorded_until - b.reach);
 }
 
 std::vector<measure::ThreeWavePoint> analyse(const BarsView& b) {
@@ -51,9 +51,9 @@ std::vector<measure::ThreeWavePoint> analyse(const BarsView& b) {
   for (long k = 0; k * h <= end; ++k) {
     const double tk = static_cast<double>(k) * h;
     t.push_back(tk);
-    ei.push_back(gauge(b.incident, di, tk - di / ci));
-    er.push_back(gauge(b.incident, di, tk + di / ci));
-    et.push_back(gauge(b.transmitted, dt, tk + dt / ct));
+    ei.push_back(gauge(b.incident, b.cfg.incident, di, tk - di / ci));
+    er.push_back(gauge(b.incident, b.cfg.incident, di, tk + di / ci));
+    et.push_back(gauge(b.transmitted, b.cfg.transmitted, dt, tk + dt / ct));
   }
   return measure::three_wave(pair_of(b), t, ei, er, et);
 }
@@ -72,9 +72,10 @@ void write_bars(const BarsView& b, const std::filesystem::path& out) {
   for (long k = static_cast<long>(std::floor(-reach / h)); k * h <= cfg.duration + reach; ++k) {
     const double t = static_cast<double>(k) * h;
     g += fmt::format("{:.9g}", t);
-    for (const double x : cfg.incident_gauges) g += fmt::format(",{:.9g}", gauge(b.incident, x, t));
+    for (const double x : cfg.incident_gauges)
+      g += fmt::format(",{:.9g}", gauge(b.incident, cfg.incident, x, t));
     for (const double x : cfg.transmitted_gauges)
-      g += fmt::format(",{:.9g}", gauge(b.transmitted, x, t));
+      g += fmt::format(",{:.9g}", gauge(b.transmitted, cfg.transmitted, x, t));
     g += '\n';
   }
   io::write_file_atomically(out / "gauges.csv", g);
@@ -86,8 +87,7 @@ void write_bars(const BarsView& b, const std::filesystem::path& out) {
   const double at = cfg.transmitted.width / b.specimen_width;
   for (const measure::ThreeWavePoint& p : analyse(b)) {
     // The specimen's stress straight from the face forces the bars recorded (mean of the two).
-    const double direct =
-        0.5 * (ai * b.incident.stress(0.0, p.t) + at * b.transmitted.stress(0.0, p.t));
+    const double direct = 0.5 * (ai * b.incident(0.0, p.t) + at * b.transmitted(0.0, p.t));
     s += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.9g}\n",
                      p.t, p.eps_i, p.eps_r, p.eps_t, p.s1, p.s2, p.stress, p.strain_rate, p.strain,
                      std::isfinite(p.eta) ? fmt::format("{:.6g}", p.eta) : std::string("nan"),
@@ -108,31 +108,16 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
   const std::vector<measure::ThreeWavePoint> points = analyse(b);
   const measure::DynamicMeasures m =
       measure::dynamic_measures(pair_of(b), points, cfg.equilibrium_tolerance);
-  // The energy each wave carried over the whole test, from the face histories (J per m): the
-  // flux through a bar's section is A sigma^2 / (rho c0).
-  double w_in = 0, w_ref = 0, w_tr = 0, peak_direct = 0;
-  const auto& times = b.incident.face_history().times();
-  const double zi = cfg.incident.impedance() / cfg.incident.width;
-  const double zt = cfg.transmitted.impedance() / cfg.transmitted.width;
-  const auto direct = [&](double t) {
-    return 0.5 *
-           (cfg.incident.width * b.incident.stress(0.0, t) +
-            cfg.transmitted.width * b.transmitted.stress(0.0, t)) /
-           b.specimen_width;
-  };
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    peak_direct = std::max(peak_direct, direct(times[k]));
-    if (k == 0) continue;
-    const double t0 = times[k - 1], t1 = times[k], h = 0.5 * (t1 - t0);  // trapezoid
-    const auto sq = [](double x) { return x * x; };
-    w_in += h * (sq(b.incident.arriving(t0)) + sq(b.incident.arriving(t1))) / zi;
-    w_ref +=
-        h * (sq(b.incident.away_from_face(0.0, t0)) + sq(b.incident.away_from_face(0.0, t1))) / zi;
-    w_tr +=
-        h *
-        (sq(b.transmitted.away_from_face(0.0, t0)) + sq(b.transmitted.away_from_face(0.0, t1))) /
-        zt;
+  // The specimen's stress straight from the face forces: its largest over the record.
+  double peak_direct = 0;
+  for (long k = 0; k * cfg.record_interval <= b.recorded_until; ++k) {
+    const double t = static_cast<double>(k) * cfg.record_interval;
+    peak_direct = std::max(peak_direct, 0.5 *
+                                            (cfg.incident.width * b.incident(0.0, t) +
+                                             cfg.transmitted.width * b.transmitted(0.0, t)) /
+                                            b.specimen_width);
   }
+  const double w_in = m.incident_energy, w_ref = m.reflected_energy, w_tr = m.transmitted_energy;
   const solver::Energy& e = solver.energy();
   const std::vector<double> fragments = measure::fragment_areas(model);
   double specimen_area = 0;
@@ -141,7 +126,8 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
   for (std::size_t k = 0; k < std::min<std::size_t>(fragments.size(), 20); ++k)
     sizes += fmt::format("{}{:.6g}", k ? ", " : "", fragments[k] / specimen_area);
   return fmt::format(
-      ",\n  \"shpb\": {{\"striker_velocity_m_per_s\": {:.6g}, \"striker_length_m\": {:.6g}, "
+      ",\n  \"shpb\": {{\"bars\": \"{}\", \"striker_velocity_m_per_s\": {:.6g}, "
+      "\"striker_length_m\": {:.6g}, "
       "\"incident_stress_Pa\": {:.8g}, \"pulse_duration_s\": {:.6g}, \"analysis_window_s\": "
       "{:.6g},\n    \"dynamic_strength_Pa\": {}, \"peak_time_s\": {}, \"strain_at_peak\": {}, "
       "\"strain_rate_at_peak_per_s\": {}, "
@@ -150,9 +136,10 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
       "\"equilibrium_time_s\": {},\n"
       "    \"energy_J_per_m\": {{\"incident\": {:.8g}, \"reflected\": {:.8g}, \"transmitted\": "
       "{:.8g}, \"absorbed\": {:.8g}, \"boundary_work\": {:.8g}, \"breakage\": {:.8g}, "
-      "\"friction\": {:.8g}, \"damping\": {:.8g}, \"kinetic\": {:.8g}, \"strain\": {:.8g}}},\n"
+      "\"friction\": {:.8g}, \"damping\": {:.8g}, \"kinetic\": {:.8g}, \"strain\": {:.8g}, "
+      "\"striker_kinetic\": {:.8g}}},\n"
       "    \"fragments\": {}, \"largest_fragments_area_fraction\": [{}]}}",
-      cfg.striker_velocity, cfg.striker_length,
+      cfg.block_bars ? "blocks" : "exact", cfg.striker_velocity, cfg.striker_length,
       0.5 * cfg.incident.impedance() * cfg.striker_velocity,
       2.0 * cfg.striker_length / cfg.incident.wave_speed(), analysis_window(b),
       m.valid ? number(m.peak_stress) : "null", m.valid ? number(m.peak_time) : "null",
@@ -161,7 +148,8 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
       m.valid ? number(m.eta_at_peak) : "null", number(m.eta_loading), cfg.equilibrium_tolerance,
       number(m.equilibrium_time), w_in, w_ref, w_tr, w_in - w_ref - w_tr, e.boundary_work,
       e.breakage, e.slip, e.damping, solver.kinetic_energy(),
-      solver.contact_strain_energy() + solver.zone_strain_energy(), fragments.size(), sizes);
+      solver.contact_strain_energy() + solver.zone_strain_energy(), e.initial_kinetic,
+      fragments.size(), sizes);
 }
 
 }  // namespace vorodec::app

@@ -814,6 +814,23 @@ ShpbConfig read_shpb(TomlSection sec) {
     sec.fail("rise_time", fmt::format("the rise and the fall ({} s each) take longer than the "
                                       "pulse (2 x striker_length / c0 = {} s)",
                                       s.rise_time, pulse));
+  const std::string exact = "exact";
+  const std::string bars = sec.string("bars", &exact);
+  if (bars != "exact" && bars != "blocks")
+    sec.fail("bars", "\"exact\" (1D elastic bars) or \"blocks\" (bars built from blocks)");
+  s.block_bars = bars == "blocks";
+  if (s.block_bars) {
+    s.bar_block_length = sec.positive("bar_block_length", 0.1 * s.incident.width);
+    if (s.rise_time > 0)
+      sec.fail("rise_time", "a striker of blocks sends its own pulse: no rise_time with blocks");
+    if (s.striker_length < 2.0 * s.bar_block_length ||
+        s.transmitted.length < 2.0 * s.bar_block_length)
+      sec.fail("bar_block_length", fmt::format("{} m: the striker and each bar need at least two "
+                                               "blocks",
+                                               s.bar_block_length));
+  } else if (sec.has("bar_block_length")) {
+    sec.fail("bar_block_length", "only with bars = \"blocks\"");
+  }
   s.duration = sec.positive("duration", 2.0 * pulse);
   s.record_interval = sec.positive("record_interval", pulse / 1000.0);
   s.equilibrium_tolerance = sec.positive("equilibrium_tolerance", 0.05);

@@ -15,6 +15,7 @@ SpecimenBoundary::SpecimenBoundary(const model::Model& model) {
   for (std::uint32_t b = 0; b < bl.size(); ++b) {
     if (bl.group[b] == Group::top_platen) top_ = static_cast<int>(b);
     if (bl.group[b] == Group::bottom_platen) bottom_ = static_cast<int>(b);
+    if (bl.group[b] == Group::incident_bar) in_bars_ = true;
     if (bl.group[b] != Group::specimen) continue;
     for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c) {
       const Point p{bl.x[b] + bl.corner[c].x, bl.y[b] + bl.corner[c].y};

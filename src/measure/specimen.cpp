@@ -41,8 +41,11 @@ SpecimenState measure_specimen(const model::Model& model, const loading::Specime
   if (top >= 0 && bot >= 0) {
     const auto t = static_cast<std::size_t>(top), b = static_cast<std::size_t>(bot);
     s.axial_strain = ((bl.y[b] - bl.y0[b]) - (bl.y[t] - bl.y0[t])) / boundary.height();
-    s.axial_stress = platen_stress(solver.contact_force(t).y, solver.contact_force(b).y, boundary,
-                                   model.thickness);
+    const auto force = [&](std::size_t p) {
+      return boundary.platens_in_bars() ? solver.contact_force_from(p, model::Group::specimen).y
+                                        : solver.contact_force(p).y;
+    };
+    s.axial_stress = platen_stress(force(t), force(b), boundary, model.thickness);
   }
   s.lateral_strain = -(mean_dx(bl, boundary.right_gauges()) - mean_dx(bl, boundary.left_gauges())) /
                      boundary.width();

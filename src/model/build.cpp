@@ -43,7 +43,7 @@ void add_block(Model& model, std::span<const Point> polygon, double density, Gro
   b.inertia.push_back(density * mp.polar_moment * model.thickness);
   b.true_inertia.push_back(b.inertia.back());
   b.group.push_back(group);
-  b.prescribed.push_back(group == Group::specimen ? 0 : 1);
+  b.prescribed.push_back(group == Group::top_platen || group == Group::bottom_platen ? 1 : 0);
   b.deformable.push_back(0);
   b.cos_t.push_back(1.0);
   b.sin_t.push_back(0.0);
@@ -155,6 +155,25 @@ Model build_model(const geometry::Tessellation& tess, const BuildSettings& setti
           deformable->zone_size, Group::specimen);
     else
       add_block(model, poly, density, Group::specimen);
+  }
+  if (settings.bars) {  // rectangles of the bars' width centred on the specimen's axis
+    const BlockBars& br = *settings.bars;
+    const double x0 = 0.5 * (xmin + xmax) - 0.5 * br.width, x1 = x0 + br.width, h = br.block_length;
+    const auto row = [&](double y, Group g, double density) {
+      const Point r[] = {{x0, y}, {x1, y}, {x1, y + h}, {x0, y + h}};
+      add_block(model, r, density, g);
+    };
+    row(ymin - h, Group::bottom_platen, br.transmitted_density);
+    row(ymax, Group::top_platen, br.incident_density);
+    for (int k = 1; k < br.transmitted_blocks; ++k)
+      row(ymin - (k + 1) * h, Group::transmitted_bar, br.transmitted_density);
+    for (int k = 1; k < br.incident_blocks; ++k)
+      row(ymax + k * h, Group::incident_bar, br.incident_density);
+    for (int k = 0; k < br.striker_blocks; ++k)
+      row(ymax + (br.incident_blocks + k) * h, Group::striker, br.incident_density);
+    for (std::size_t b = 0; b < model.blocks.size(); ++b)  // the platens are bar blocks: free
+      model.blocks.prescribed[b] = 0;
+    return model;
   }
   if (settings.platens) {
     // Platens overhang the specimen by half its width; their mass never enters (velocity

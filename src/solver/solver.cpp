@@ -374,6 +374,20 @@ void Solver::integrate() {
   energy_.damping += w.damping;
 }
 
+model::Point Solver::contact_force_from(std::size_t b, model::Group g) const {
+  model::Point f{0.0, 0.0};
+  for (std::uint32_t k = gather_begin_[b]; k < gather_begin_[b + 1]; ++k) {
+    const std::uint32_t e = gather_[k];
+    const model::Contact& c = model_.contacts[e & ~b_side];
+    const bool on_b = (e & b_side) != 0;
+    if (model_.blocks.group[static_cast<std::size_t>(on_b ? c.a : c.b)] != g) continue;
+    const model::ContactForce& cf = forces_[e & ~b_side];
+    f.x += on_b ? -cf.fx : cf.fx;
+    f.y += on_b ? -cf.fy : cf.fy;
+  }
+  return f;
+}
+
 double Solver::kinetic_energy() const {
   const auto& bl = model_.blocks;
   double e = 0.0;
@@ -458,7 +472,7 @@ void Solver::check_stability() const {
           c.a, c.b, -c.gap, limit, settings_.overlap_limit, steps_, time_, c.length,
           c.bonded && c.state <= model::ContactState::slipping ? "bonded" : "not bonded", c.fn));
   }
-  const double supplied = energy_.boundary_work + energy_.body_work;
+  const double supplied = energy_.boundary_work + energy_.body_work + energy_.initial_kinetic;
   const double ke = kinetic_energy();
   if (steps_ > 100 && ke > 1.5 * std::abs(supplied) + 1e-9)
     throw InstabilityError(fmt::format(

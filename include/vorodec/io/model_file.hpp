@@ -96,12 +96,16 @@ struct QuietBoundaryConfig {
 struct ShpbConfig {
   loading::BarProperties incident, transmitted;
   std::vector<double> incident_gauges, transmitted_gauges;  // m from the specimen face
-  double striker_length = 0;    // m, of the incident bar's material
-  double striker_velocity = 0;  // m/s
-  double rise_time = 0;         // s, the pulse's linear rise and fall (a pulse shaper); 0: none
-  double duration = 0;          // s of the specimen's loading; 0: twice the pulse's duration
-  double record_interval = 0;   // s between bars.csv rows; 0: the pulse's duration / 1000
+  double striker_length = 0;                                // m, of the incident bar's material
+  double striker_velocity = 0;                              // m/s
+  double rise_time = 0;        // s, the pulse's linear rise and fall (a pulse shaper); 0: none
+  double duration = 0;         // s of the specimen's loading; 0: twice the pulse's duration
+  double record_interval = 0;  // s between bars.csv rows; 0: the pulse's duration / 1000
   double equilibrium_tolerance = 0.05;  // -, |eta| of "in equilibrium"
+  // Bars (and striker) built from rectangular blocks of this length (m) with a bar contact law,
+  // instead of the exact 1D bars; gauges at the joints nearest their positions.
+  bool block_bars = false;
+  double bar_block_length = 0;
 };
 
 struct OutputSettings {
@@ -152,8 +156,8 @@ struct ModelConfig {
   std::optional<CorrosionConfig> corrosion;
   std::optional<QuietBoundaryConfig> quiet_boundary;
   std::optional<ShpbConfig> shpb;  // the load path is the bars' (no stages)
-  LawChoice platens;            // platen to specimen
-  bool platens_bonded = false;  // glued to the specimen (direct tension)
+  LawChoice platens;               // platen to specimen
+  bool platens_bonded = false;     // glued to the specimen (direct tension)
   solver::SolverSettings solver;
   long max_steps = 0;
   loading::LoadPath load_path;

@@ -27,6 +27,9 @@ class SpecimenBoundary {
   double height() const { return height_; }  // m, initial
   int top_platen() const { return top_; }
   int bottom_platen() const { return bottom_; }
+  // The platens are the first blocks of block bars: the specimen's force on them is only part
+  // of their contact forces.
+  bool platens_in_bars() const { return in_bars_; }
   const std::vector<BoundaryEdge>& lateral_edges() const { return edges_; }
   const std::vector<std::uint32_t>& left_gauges() const { return left_; }
   const std::vector<std::uint32_t>& right_gauges() const { return right_; }
@@ -34,6 +37,7 @@ class SpecimenBoundary {
  private:
   double width_ = 0, height_ = 0;
   int top_ = -1, bottom_ = -1;
+  bool in_bars_ = false;
   std::vector<BoundaryEdge> edges_;
   std::vector<std::uint32_t> left_, right_;
 };

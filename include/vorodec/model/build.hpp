@@ -9,11 +9,20 @@
 
 namespace vorodec::model {
 
+// A pressure-bar test's bars as columns of rectangular blocks (the platens are their first
+// blocks), the striker on top of the incident bar.
+struct BlockBars {
+  double width = 0, block_length = 0;  // m
+  int incident_blocks = 0, transmitted_blocks = 0, striker_blocks = 0;
+  double incident_density = 0, transmitted_density = 0;  // kg/m^3
+};
+
 struct BuildSettings {
   double density = 0.0;                        // kg/m^3
   double rounding_length = 0.0;                // m, UDEC corner rounding d
   bool platens = true;                         // rigid platens above and below the specimen
   std::span<const double> block_density = {};  // kg/m^3 per specimen block; empty: `density`
+  std::optional<BlockBars> bars = {};          // instead of the platens
 };
 
 // Specimen blocks zoned into constant-strain triangles of this size and material.

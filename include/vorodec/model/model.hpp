@@ -12,7 +12,17 @@ namespace vorodec::model {
 using geometry::Point;
 
 // Which body a block is: the specimen or one of the loading platens.
-enum class Group : std::int32_t { specimen = 0, bottom_platen = 1, top_platen = 2 };
+// Pressure-bar tests with bars built from blocks add the bars' blocks (the platens are then the
+// bars' first blocks) and the striker's.
+enum class Group : std::int32_t {
+  specimen = 0,
+  bottom_platen = 1,
+  top_platen = 2,
+  incident_bar = 3,
+  transmitted_bar = 4,
+  striker = 5
+};
+inline constexpr std::size_t kGroups = 6;
 
 // Constants of a corner's rounded arc and of the block edge that starts at the corner.
 struct CornerShape {

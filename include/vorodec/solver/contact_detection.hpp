@@ -24,11 +24,13 @@ struct GrainLaws {
 
 // Which law group a pair of body groups uses (-1: the pair never interacts).
 struct LawTable {
-  std::array<std::array<int, 3>, 3> law{{{-1, -1, -1}, {-1, -1, -1}, {-1, -1, -1}}};
+  using Row = std::array<int, model::kGroups>;
+  std::array<Row, model::kGroups> law{Row{-1, -1, -1, -1, -1, -1}, Row{-1, -1, -1, -1, -1, -1},
+                                      Row{-1, -1, -1, -1, -1, -1}, Row{-1, -1, -1, -1, -1, -1},
+                                      Row{-1, -1, -1, -1, -1, -1}, Row{-1, -1, -1, -1, -1, -1}};
   // Which group pairs bond where they touch in the initial state (specimen-specimen; and
-  // specimen-platen for bonded platens).
-  std::array<std::array<bool, 3>, 3> bond{
-      {{true, false, false}, {false, false, false}, {false, false, false}}};
+  // specimen-platen for bonded platens; within a block bar).
+  std::array<std::array<bool, model::kGroups>, model::kGroups> bond{{{true}}};
   int for_pair(model::Group a, model::Group b) const {
     return law[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)];
   }

@@ -40,8 +40,9 @@ struct Energy {
   double damping = 0.0;
   double slip = 0.0;
   double breakage = 0.0;
-  double viscous = 0.0;    // dashpots of viscous (Burger's) contacts
-  double corrosion = 0.0;  // strain energy the stress-corrosion layers took from bonds
+  double viscous = 0.0;          // dashpots of viscous (Burger's) contacts
+  double corrosion = 0.0;        // strain energy the stress-corrosion layers took from bonds
+  double initial_kinetic = 0.0;  // given as velocities before the first step (a striker's)
 };
 
 class Solver {
@@ -79,6 +80,8 @@ class Solver {
   const Energy& energy() const { return energy_; }
   const std::vector<laws::CrackEvent>& cracks() const { return cracks_; }
   double kinetic_energy() const;
+  // The blocks' velocities set before the first step (a striker's) are energy supplied.
+  void count_initial_kinetic_energy() { energy_.initial_kinetic = kinetic_energy(); }
   double contact_strain_energy() const;
   double zone_strain_energy() const;  // J per m, deformable blocks
   std::size_t initial_bonded_contacts() const { return initial_bonded_; }
@@ -86,6 +89,8 @@ class Solver {
   const std::vector<std::unique_ptr<laws::LawGroup>>& laws() const { return laws_; }
   // Sum of contact forces on block b in the last step (reaction of a platen), N per m.
   model::Point contact_force(std::size_t b) const { return {sums_[b].fx, sums_[b].fy}; }
+  // The part of it from contacts with blocks of group g (a block bar's platen: the specimen's).
+  model::Point contact_force_from(std::size_t b, model::Group g) const;
   // Unbalanced-force ratio of the last step: the mean over free bodies (specimen blocks and
   // gridpoints) of |unbalanced force| (contact + applied + gravity, before damping) over the mean
   // over contacts of |(fn, fs)|. Serial and O(blocks + contacts): call it every N steps only.
