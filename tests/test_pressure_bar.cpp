@@ -4,8 +4,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "../verification/cases/cases.hpp"
 #include "run_support.hpp"
@@ -62,18 +60,8 @@ TEST(ThreeWave, EquilibratedSpecimenHasEtaZeroAndTheTransmittedStress) {
   EXPECT_NEAR(m.incident_energy, 2e11 * 5000 * 0.05 * 1e-6 * 1e-4, 1e-9);
 }
 
-namespace {
-std::string slurp(const fs::path& f) {
-  std::ifstream in(f);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-double json_value(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\": ");
-  return at == std::string::npos ? NAN : std::stod(json.substr(at + key.size() + 4));
-}
-}  // namespace
+using vorodec::testing::json_number;
+using vorodec::testing::slurp;
 
 // The bars' account (incident - reflected - transmitted energy, from the face histories) and the
 // solver's (the platens' force at t_n times their velocity over the step) differ at first order
@@ -89,13 +77,13 @@ TEST(ShpbRun, EnergyLeavingTheBarsIsTheWorkDoneOnTheSpecimenToFirstOrder) {
                                       out.string() + (k ? " --set solver.safety_factor=0.4" : "")),
         0);
     const std::string s = slurp(out / "summary.json");
-    const double absorbed = json_value(s, "absorbed"), work = json_value(s, "boundary_work");
+    const double absorbed = json_number(s, "absorbed"), work = json_number(s, "boundary_work");
     EXPECT_GT(absorbed, 0.0);
     gap[k] = std::abs(absorbed - work) / work;
     EXPECT_LT(gap[k], 1e-2);
     // The three-wave stress and the stress from the face forces agree at the peak.
-    EXPECT_NEAR(json_value(s, "dynamic_strength_Pa"), json_value(s, "peak_face_force_stress_Pa"),
-                0.02 * json_value(s, "peak_face_force_stress_Pa"));
+    EXPECT_NEAR(json_number(s, "dynamic_strength_Pa"), json_number(s, "peak_face_force_stress_Pa"),
+                0.02 * json_number(s, "peak_face_force_stress_Pa"));
     EXPECT_TRUE(fs::exists(out / "bars.csv"));
     EXPECT_TRUE(fs::exists(out / "gauges.csv"));
   }

@@ -4,6 +4,7 @@
 
 #include "vorodec/checkpoint/archive_io.hpp"
 #include "vorodec/model/model.hpp"
+#include "vorodec/solver/solver.hpp"
 
 namespace vorodec::app {
 
@@ -16,6 +17,12 @@ struct GoodState {
     theta = m.blocks.theta;
     gx = m.zoning.x;
     gy = m.zoning.y;
+  }
+  // Every 100 steps: the stability check (throws solver::InstabilityError), then this state kept.
+  void check(const solver::Solver& solver, const model::Model& m) {
+    if (solver.steps() % 100 != 0) return;
+    solver.check_stability();
+    keep(m);
   }
   // Nothing kept yet: the model stays as it is.
   void restore(model::Model& m) const {

@@ -190,10 +190,7 @@ void QuasiStaticDriver::step(Observers& observers) {
   if (quiet_) quiet_->apply(model_, solver_.time());
   solver_.step();
   state_ = measure::measure_specimen(model_, boundary_, solver_);
-  if (solver_.steps() % 100 == 0) {
-    solver_.check_stability();
-    good_.keep(model_);
-  }
+  good_.check(solver_, model_);
   outcome_.peak = std::max(outcome_.peak, state_.axial_stress);
   outcome_.trough = std::min(outcome_.trough, state_.axial_stress);
   const bool row = solver_.steps() % cfg_.output.history_steps == 0;

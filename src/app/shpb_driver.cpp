@@ -188,10 +188,7 @@ void ShpbDriver::step(Observers& observers) {
   solver_.step();
   if (cfg_.block_bars) record_block_bars();
   state_ = measure::measure_specimen(model_, boundary_, solver_);
-  if (solver_.steps() % 100 == 0) {
-    solver_.check_stability();
-    good_.keep(model_);
-  }
+  good_.check(solver_, model_);
   outcome_.peak = std::max(outcome_.peak, state_.axial_stress);
   outcome_.trough = std::min(outcome_.trough, state_.axial_stress);
   const bool row = solver_.steps() % history_steps_ == 0;

@@ -26,7 +26,6 @@ class WaveHistory {
   double at(double t) const;
   std::vector<double>& times() { return t_; }
   std::vector<double>& values() { return s_; }
-  const std::vector<double>& times() const { return t_; }
 
  private:
   std::vector<double> t_, s_;
@@ -53,7 +52,6 @@ class ElasticBar {
   double stress(double x, double t) const { return towards_face(x, t) + away_from_face(x, t); }
   // Checkpoints: the face's emitted history is the bar's whole state.
   WaveHistory& face_history() { return emitted_; }
-  const WaveHistory& face_history() const { return emitted_; }
 
  private:
   double far_emitted(double t) const;
