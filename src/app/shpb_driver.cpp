@@ -12,8 +12,8 @@ namespace vorodec::app {
 
 // A member added to the driver is either state a checkpoint carries (save and load it in
 // ShpbDriver::state) or comes again from the model file (say so there); then update the size.
-// The quiet ends, the gauges' blocks and the striker's come again from the model.
-static_assert(sizeof(ShpbDriver) == 1272, "ShpbDriver changed: see state()");
+// The quiet ends and the gauges' blocks come again from the model.
+static_assert(sizeof(ShpbDriver) == 1248, "ShpbDriver changed: see state()");
 
 using model::Group;
 
@@ -67,15 +67,23 @@ void ShpbDriver::set_up_block_bars() {
     return c;
   };
   const double h = cfg_.bar_block_length;
+  // The striker's pulse enters through the incident bar's far end as a quiet boundary's input
+  // (2 rho c0 v_in with v_in = sigma / rho c0): the wave a striker of the bar's material and
+  // section sends, rise and fall included; the end absorbs what comes back.
+  const loading::BarProperties& in = cfg_.incident;
+  const auto pulse =
+      loading::striker_pulse(in, cfg_.striker_length, cfg_.striker_velocity, 0.0, cfg_.rise_time);
+  const double z_in = in.impedance();
   const auto bar = [&](Group platen, Group group, const std::vector<double>& xs, double sign,
-                       const loading::BarProperties& p, std::optional<loading::QuietBoundary>& q) {
+                       const loading::BarProperties& p, std::optional<loading::QuietBoundary>& q,
+                       bool struck) {
     const std::vector<std::uint32_t> c = column(platen, group);
     for (const double x : xs) {
       const auto j =
           std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(x / h)), 1, c.size() - 1);
       gauges_.push_back({x, c[j - 1], c[j], sign, p.youngs_modulus, {}});
     }
-    if (!p.quiet_far_end) return;
+    if (!p.quiet_far_end && !struck) return;
     const std::uint32_t end = c.back();  // its edge farthest from the specimen
     std::uint32_t best = bl.corner_begin[end];
     double far = -1;
@@ -87,15 +95,18 @@ void ShpbDriver::set_up_block_bars() {
       }
     }
     // Dashpots rho c0 per area: the bar's own impedance.
-    q.emplace(std::vector<loading::BoundaryEdge>{{end, best}},
+    const std::vector<loading::BoundaryEdge> edge{{end, best}};
+    q.emplace(struck ? std::vector<loading::BoundaryEdge>{} : edge,
               loading::QuietSettings{p.density, p.wave_speed(), 0.0});
+    if (struck)
+      q->set_input(edge, [pulse, z_in](double t) {
+        return loading::InputVelocity{pulse(t) / z_in, 0.0};
+      });
   };
   bar(Group::top_platen, Group::incident_bar, cfg_.incident_gauges, 1.0, cfg_.incident,
-      incident_end_);
+      incident_end_, true);
   bar(Group::bottom_platen, Group::transmitted_bar, cfg_.transmitted_gauges, -1.0, cfg_.transmitted,
-      transmitted_end_);
-  for (std::uint32_t b = 0; b < bl.size(); ++b)
-    if (bl.group[b] == Group::striker) striker_.push_back(b);
+      transmitted_end_, false);
   const auto recorded = [this](const loading::WaveHistory& face, bool incident) {
     return [this, &face, incident](double x, double t) {
       if (x == 0.0) return face.at(t);
@@ -155,8 +166,6 @@ RunView ShpbDriver::view() const {
 void ShpbDriver::advance(Observers& observers) {
   try {
     if (phase_ == Phase::start) {
-      for (const std::uint32_t b : striker_) model_.blocks.vy[b] = -cfg_.striker_velocity;
-      solver_.count_initial_kinetic_energy();
       observers.sample(view(), {"impact:start", true, false});
       phase_ = Phase::stepping;
     } else if (phase_ == Phase::stepping) {
@@ -179,9 +188,8 @@ void ShpbDriver::step(Observers& observers) {
     outcome_.exit_code = limit_from_option_ ? 0 : 4;
     return finish(observers, "impact:stopped");
   }
-  const double separated = 2.0 * cfg_.striker_length / cfg_.incident.wave_speed();
   for (auto* end : {&incident_end_, &transmitted_end_})
-    if (*end && (end == &transmitted_end_ || solver_.time() >= separated)) {
+    if (*end) {
       (*end)->clear_loads(model_);
       (*end)->apply(model_, solver_.time());
     }

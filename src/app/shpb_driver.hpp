@@ -5,8 +5,8 @@
 //   face's stress, and gives the platen the face's velocity for the step. Time 0 is the incident
 //   pulse's arrival at the specimen; the bars' earlier history is known exactly.
 // - bars built from blocks (model/build.hpp BlockBars, the platens their first blocks): the
-//   striker's blocks start at its speed, the far ends are quiet boundaries where asked, and the
-//   gauges record the strain of the joint nearest them. The run starts at the impact; its outputs
+//   striker's pulse enters through the incident bar's far end (a quiet boundary with an input),
+//   the transmitted bar's far end is quiet where asked, and the gauges record the strain of the joint nearest them. The run starts at the impact; its outputs
 //   are shifted by incident length / c0 to the same time 0.
 // The test runs for [shpb] duration after time 0.
 #include <optional>
@@ -71,8 +71,6 @@ class ShpbDriver final : public Driver {
   // Block bars: gauges (incident, then transmitted), the faces' stresses, the quiet far ends.
   std::vector<BlockGauge> gauges_;
   loading::WaveHistory incident_face_, transmitted_face_;
-  std::vector<std::uint32_t> striker_;
-  // The struck end's dashpot acts once the striker has left (2 L_striker / c0 after the impact).
   std::optional<loading::QuietBoundary> incident_end_, transmitted_end_;
   BarsView bars_;
   // Exact bars: each face's stress in the last step (the half-step extrapolation's).

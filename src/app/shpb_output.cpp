@@ -136,8 +136,7 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
       "\"equilibrium_time_s\": {},\n"
       "    \"energy_J_per_m\": {{\"incident\": {:.8g}, \"reflected\": {:.8g}, \"transmitted\": "
       "{:.8g}, \"absorbed\": {:.8g}, \"boundary_work\": {:.8g}, \"breakage\": {:.8g}, "
-      "\"friction\": {:.8g}, \"damping\": {:.8g}, \"kinetic\": {:.8g}, \"strain\": {:.8g}, "
-      "\"striker_kinetic\": {:.8g}}},\n"
+      "\"friction\": {:.8g}, \"damping\": {:.8g}, \"kinetic\": {:.8g}, \"strain\": {:.8g}}},\n"
       "    \"fragments\": {}, \"largest_fragments_area_fraction\": [{}]}}",
       cfg.block_bars ? "blocks" : "exact", cfg.striker_velocity, cfg.striker_length,
       0.5 * cfg.incident.impedance() * cfg.striker_velocity,
@@ -148,7 +147,7 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
       m.valid ? number(m.eta_at_peak) : "null", number(m.eta_loading), cfg.equilibrium_tolerance,
       number(m.equilibrium_time), w_in, w_ref, w_tr, w_in - w_ref - w_tr, e.boundary_work,
       e.breakage, e.slip, e.damping, solver.kinetic_energy(),
-      solver.contact_strain_energy() + solver.zone_strain_energy(), e.initial_kinetic,
+      solver.contact_strain_energy() + solver.zone_strain_energy(),
       fragments.size(), sizes);
 }
 

@@ -70,23 +70,18 @@ std::vector<double> block_densities(const io::GrainConfig& g, const geometry::Te
 
 // Block bars: linear springs jkn = E / h between a bar's blocks (a column of blocks of length h
 // on springs per unit length k carries waves at sqrt(k h / rho) = c0), no shear stiffness
-// (Poisson's ratio 0); the striker meets the incident bar through a spring of the same stiffness
-// that carries no tension.
+// (Poisson's ratio 0).
 void add_bar_laws(const io::ShpbConfig& b, std::vector<std::unique_ptr<laws::LawGroup>>& groups,
                   solver::LawTable& table) {
-  const auto spring = [&](const char* law, double e, bool tensionless) {
+  const auto spring = [&](double e) {
     laws::LawParams p;
     p["jkn"] = model::Distribution::constant(e / b.bar_block_length);
     p["jks"] = model::Distribution::constant(0.0);
-    if (tensionless)
-      for (const char* k : {"tension", "cohesion", "friction", "dilation"})
-        p[k] = model::Distribution::constant(0.0);
-    groups.push_back(laws::find_law(law)->make(p, 0));
+    groups.push_back(laws::find_law("linear_elastic")->make(p, 0));
     return static_cast<int>(groups.size() - 1);
   };
-  const int incident = spring("linear_elastic", b.incident.youngs_modulus, false);
-  const int transmitted = spring("linear_elastic", b.transmitted.youngs_modulus, false);
-  const int impact = spring("mohr_coulomb", b.incident.youngs_modulus, true);
+  const int incident = spring(b.incident.youngs_modulus);
+  const int transmitted = spring(b.transmitted.youngs_modulus);
   const auto set = [&](Group x, Group y, int law, bool bond) {
     const auto i = static_cast<std::size_t>(x), j = static_cast<std::size_t>(y);
     table.law[i][j] = table.law[j][i] = law;
@@ -94,8 +89,6 @@ void add_bar_laws(const io::ShpbConfig& b, std::vector<std::unique_ptr<laws::Law
   };
   set(Group::top_platen, Group::incident_bar, incident, true);
   set(Group::incident_bar, Group::incident_bar, incident, true);
-  set(Group::striker, Group::striker, incident, true);
-  set(Group::striker, Group::incident_bar, impact, false);
   set(Group::bottom_platen, Group::transmitted_bar, transmitted, true);
   set(Group::transmitted_bar, Group::transmitted_bar, transmitted, true);
 }
@@ -124,10 +117,8 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
     const auto blocks = [&](double length) {
       return std::max(2, static_cast<int>(std::lround(length / h)));
     };
-    bars = model::BlockBars{b.incident.width,          h,
-                            blocks(b.incident.length), blocks(b.transmitted.length),
-                            blocks(b.striker_length),  b.incident.density,
-                            b.transmitted.density};
+    bars = model::BlockBars{b.incident.width,         h, blocks(b.incident.length),
+                            blocks(b.transmitted.length), b.incident.density, b.transmitted.density};
   }
   s.model = std::make_unique<model::Model>(
       model::build_model(tess, {cfg.density, d, true, density, bars}, deformable));

@@ -821,13 +821,13 @@ ShpbConfig read_shpb(TomlSection sec) {
   s.block_bars = bars == "blocks";
   if (s.block_bars) {
     s.bar_block_length = sec.positive("bar_block_length", 0.1 * s.incident.width);
-    if (s.rise_time > 0)
-      sec.fail("rise_time", "a striker of blocks sends its own pulse: no rise_time with blocks");
-    if (s.striker_length < 2.0 * s.bar_block_length ||
-        s.transmitted.length < 2.0 * s.bar_block_length)
-      sec.fail("bar_block_length", fmt::format("{} m: the striker and each bar need at least two "
-                                               "blocks",
-                                               s.bar_block_length));
+    if (!s.incident.quiet_far_end)
+      sec.sub("incident_bar")
+          .fail("far_end", "with bars = \"blocks\" the striker's pulse enters through the incident "
+                           "bar's far end, which absorbs what returns: far_end = \"quiet\"");
+    if (s.transmitted.length < 2.0 * s.bar_block_length)
+      sec.fail("bar_block_length",
+               fmt::format("{} m: each bar needs at least two blocks", s.bar_block_length));
   } else if (sec.has("bar_block_length")) {
     sec.fail("bar_block_length", "only with bars = \"blocks\"");
   }

@@ -169,8 +169,6 @@ Model build_model(const geometry::Tessellation& tess, const BuildSettings& setti
       row(ymin - (k + 1) * h, Group::transmitted_bar, br.transmitted_density);
     for (int k = 1; k < br.incident_blocks; ++k)
       row(ymax + k * h, Group::incident_bar, br.incident_density);
-    for (int k = 0; k < br.striker_blocks; ++k)
-      row(ymax + (br.incident_blocks + k) * h, Group::striker, br.incident_density);
     for (std::size_t b = 0; b < model.blocks.size(); ++b)  // the platens are bar blocks: free
       model.blocks.prescribed[b] = 0;
     return model;

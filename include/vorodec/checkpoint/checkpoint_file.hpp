@@ -15,7 +15,7 @@
 
 namespace vorodec::checkpoint {
 
-inline constexpr std::uint32_t kFormat = 1;
+inline constexpr std::uint32_t kFormat = 2;
 
 struct Header {
   std::string vorodec_version;

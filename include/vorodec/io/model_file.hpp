@@ -102,8 +102,9 @@ struct ShpbConfig {
   double duration = 0;         // s of the specimen's loading; 0: twice the pulse's duration
   double record_interval = 0;  // s between bars.csv rows; 0: the pulse's duration / 1000
   double equilibrium_tolerance = 0.05;  // -, |eta| of "in equilibrium"
-  // Bars (and striker) built from rectangular blocks of this length (m) with a bar contact law,
-  // instead of the exact 1D bars; gauges at the joints nearest their positions.
+  // Bars built from rectangular blocks of this length (m) with a bar contact law, instead of the
+  // exact 1D bars; the striker's pulse enters through the incident bar's far end; gauges at the
+  // joints nearest their positions.
   bool block_bars = false;
   double bar_block_length = 0;
 };

@@ -10,10 +10,10 @@
 namespace vorodec::model {
 
 // A pressure-bar test's bars as columns of rectangular blocks (the platens are their first
-// blocks), the striker on top of the incident bar.
+// blocks).
 struct BlockBars {
   double width = 0, block_length = 0;  // m
-  int incident_blocks = 0, transmitted_blocks = 0, striker_blocks = 0;
+  int incident_blocks = 0, transmitted_blocks = 0;
   double incident_density = 0, transmitted_density = 0;  // kg/m^3
 };
 

@@ -13,16 +13,15 @@ using geometry::Point;
 
 // Which body a block is: the specimen or one of the loading platens.
 // Pressure-bar tests with bars built from blocks add the bars' blocks (the platens are then the
-// bars' first blocks) and the striker's.
+// bars' first blocks).
 enum class Group : std::int32_t {
   specimen = 0,
   bottom_platen = 1,
   top_platen = 2,
   incident_bar = 3,
-  transmitted_bar = 4,
-  striker = 5
+  transmitted_bar = 4
 };
-inline constexpr std::size_t kGroups = 6;
+inline constexpr std::size_t kGroups = 5;
 
 // Constants of a corner's rounded arc and of the block edge that starts at the corner.
 struct CornerShape {

@@ -42,7 +42,6 @@ struct Energy {
   double breakage = 0.0;
   double viscous = 0.0;          // dashpots of viscous (Burger's) contacts
   double corrosion = 0.0;        // strain energy the stress-corrosion layers took from bonds
-  double initial_kinetic = 0.0;  // given as velocities before the first step (a striker's)
 };
 
 class Solver {
@@ -80,8 +79,6 @@ class Solver {
   const Energy& energy() const { return energy_; }
   const std::vector<laws::CrackEvent>& cracks() const { return cracks_; }
   double kinetic_energy() const;
-  // The blocks' velocities set before the first step (a striker's) are energy supplied.
-  void count_initial_kinetic_energy() { energy_.initial_kinetic = kinetic_energy(); }
   double contact_strain_energy() const;
   double zone_strain_energy() const;  // J per m, deformable blocks
   std::size_t initial_bonded_contacts() const { return initial_bonded_; }
