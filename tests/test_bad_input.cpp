@@ -549,3 +549,10 @@ TEST(BadInput, PressureBarWithStagesIsRejected) {
   EXPECT_TRUE(
       rejected("shpb_stages", text, "stage", line_of(text, "[[stage]]"), "its own load path"));
 }
+
+TEST(BadInput, BlockBarsWithAFreeStruckEndAreRejected) {
+  const std::string text = replace(shpb_model("far_end = \"free\"\n"), "striker_velocity = 5\n",
+                                   "striker_velocity = 5\nbars = \"blocks\"\n");
+  EXPECT_TRUE(rejected("shpb_block_free_end", text, "shpb.incident_bar.far_end",
+                       line_of(text, "far_end = \"free\""), "enters through the incident bar"));
+}

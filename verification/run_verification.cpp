@@ -138,6 +138,7 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
                const std::filesystem::path& dir) {
   std::vector<CaseResult> rows = a12_exact_bar();
   for (const auto& r : a12_bar_on_bar()) rows.push_back(r);
+  for (const auto& r : a12_block_bars(source_dir, binary, dir / "shpb_runs")) rows.push_back(r);
   const ShpbVerification v = b5_granite_shpb(source_dir, binary, dir / "shpb_runs");
   const auto dif = [](double rate) { return 1.0 + std::pow(rate / 154.0, 0.54); };
   const std::string source = "paper 003: DIF = 1 + (rate / 154)^0.54 (VERIFICATION B5)";

@@ -58,6 +58,22 @@ std::vector<measure::ThreeWavePoint> analyse(const BarsView& b) {
   return measure::three_wave(pair_of(b), t, ei, er, et);
 }
 
+// The incident pulse as the first incident gauge saw it, before its reflection comes back (the
+// model file keeps every incident gauge at least half the pulse from the face).
+measure::PulseShape incident_pulse(const BarsView& b) {
+  const loading::BarProperties& in = b.cfg.incident;
+  const double x = b.cfg.incident_gauges.front(), c = in.wave_speed(), h = b.cfg.record_interval;
+  const double pulse = 2.0 * b.cfg.striker_length / c;
+  const double begin = std::max(-in.length / c, -x / c - 0.1 * pulse);
+  const double end = std::min(-x / c + 1.1 * pulse, x / c);
+  std::vector<double> t, s;
+  for (long k = 0; begin + static_cast<double>(k) * h <= end; ++k) {
+    t.push_back(begin + static_cast<double>(k) * h);
+    s.push_back(b.incident(x, t.back()));
+  }
+  return measure::pulse_shape(t, s);
+}
+
 void write_bars(const BarsView& b, const std::filesystem::path& out) {
   const auto& cfg = b.cfg;
   const double ci = cfg.incident.wave_speed(), ct = cfg.transmitted.wave_speed();
@@ -117,6 +133,7 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
                                              cfg.transmitted.width * b.transmitted(0.0, t)) /
                                             b.specimen_width);
   }
+  const measure::PulseShape pulse = incident_pulse(b);
   const double w_in = m.incident_energy, w_ref = m.reflected_energy, w_tr = m.transmitted_energy;
   const solver::Energy& e = solver.energy();
   const std::vector<double> fragments = measure::fragment_areas(model);
@@ -128,8 +145,9 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
   return fmt::format(
       ",\n  \"shpb\": {{\"bars\": \"{}\", \"striker_velocity_m_per_s\": {:.6g}, "
       "\"striker_length_m\": {:.6g}, "
-      "\"incident_stress_Pa\": {:.8g}, \"pulse_duration_s\": {:.6g}, \"analysis_window_s\": "
-      "{:.6g},\n    \"dynamic_strength_Pa\": {}, \"peak_time_s\": {}, \"strain_at_peak\": {}, "
+      "\"incident_stress_Pa\": {:.8g}, \"pulse_duration_s\": {:.6g}, "
+      "\"measured_incident_stress_Pa\": {}, \"measured_pulse_duration_s\": {}, "
+      "\"analysis_window_s\": {:.6g},\n    \"dynamic_strength_Pa\": {}, \"peak_time_s\": {}, \"strain_at_peak\": {}, "
       "\"strain_rate_at_peak_per_s\": {}, "
       "\"mean_strain_rate_per_s\": {}, \"peak_face_force_stress_Pa\": {:.8g},\n"
       "    \"eta_at_peak\": {}, \"eta_loading_max\": {}, \"equilibrium_tolerance\": {:.4g}, "
@@ -140,7 +158,8 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
       "    \"fragments\": {}, \"largest_fragments_area_fraction\": [{}]}}",
       cfg.block_bars ? "blocks" : "exact", cfg.striker_velocity, cfg.striker_length,
       0.5 * cfg.incident.impedance() * cfg.striker_velocity,
-      2.0 * cfg.striker_length / cfg.incident.wave_speed(), analysis_window(b),
+      2.0 * cfg.striker_length / cfg.incident.wave_speed(), number(pulse.plateau),
+      number(pulse.duration), analysis_window(b),
       m.valid ? number(m.peak_stress) : "null", m.valid ? number(m.peak_time) : "null",
       m.valid ? number(m.strain_at_peak) : "null", m.valid ? number(m.strain_rate_at_peak) : "null",
       m.valid ? number(m.mean_strain_rate) : "null", peak_direct,

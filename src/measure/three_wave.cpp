@@ -34,6 +34,28 @@ std::vector<ThreeWavePoint> three_wave(const BarPair& bars, std::span<const doub
   return out;
 }
 
+PulseShape pulse_shape(std::span<const double> t, std::span<const double> stress) {
+  PulseShape p;
+  p.peak = stress.empty() ? 0.0 : *std::max_element(stress.begin(), stress.end());
+  double up = NAN, down = NAN;
+  for (std::size_t k = 1; k < stress.size(); ++k) {
+    const double a = stress[k - 1] - 0.5 * p.peak, b = stress[k] - 0.5 * p.peak;
+    const double at = t[k - 1] + (t[k] - t[k - 1]) * a / (a - b);
+    if (a < 0 && b >= 0 && std::isnan(up)) up = at;
+    if (a >= 0 && b < 0 && !std::isnan(up) && std::isnan(down)) down = at;
+  }
+  p.duration = down - up;
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < stress.size(); ++k)
+    if (std::abs(t[k] - 0.5 * (up + down)) <= 0.25 * p.duration) {
+      sum += stress[k];
+      ++n;
+    }
+  p.plateau = n ? sum / static_cast<double>(n) : NAN;
+  return p;
+}
+
 DynamicMeasures dynamic_measures(const BarPair& bars, std::span<const ThreeWavePoint> points,
                                  double equilibrium_tolerance) {
   DynamicMeasures m;

@@ -66,6 +66,10 @@ std::vector<CaseResult> a9_voronoi_bar();
 // striker's analytic pulse, and full transmission from one bar to another.
 std::vector<CaseResult> a12_exact_bar();
 std::vector<CaseResult> a12_bar_on_bar();
+// Bars built from blocks: the striker's pulse (models/shpb_granite.toml, square, 2 m/s), and the
+// 10 m/s impact against the exact bars' and against the platens' contact forces.
+std::vector<CaseResult> a12_block_bars(const std::string& source_dir, const std::string& binary,
+                                       const std::filesystem::path& work);
 // The row with quiet ends and no damping for `steps` steps after the pulse (1e6: about a minute).
 CaseResult quiet_row_long_run(long steps);
 

@@ -50,6 +50,16 @@ struct DynamicMeasures {
   double incident_energy = 0, reflected_energy = 0, transmitted_energy = 0;  // J per m
 };
 
+// A compressive pulse as a gauge recorded it (t increasing): its largest stress, its duration
+// between the half-largest crossings (linear between samples), and its mean over the middle half
+// of that duration (the plateau of a square or ramped pulse).
+struct PulseShape {
+  double peak = 0;      // Pa
+  double duration = 0;  // s (NaN: the record does not hold both crossings)
+  double plateau = 0;   // Pa
+};
+PulseShape pulse_shape(std::span<const double> t, std::span<const double> stress);
+
 DynamicMeasures dynamic_measures(const BarPair& bars, std::span<const ThreeWavePoint> points,
                                  double equilibrium_tolerance = 0.05);
 
