@@ -12,6 +12,10 @@ With --series OUT_PREFIX over several folders (a striker-speed series):
   OUT_PREFIX_dif.png            DIF (strength / --static-strength) against the mean strain rate to
                                 the peak, with paper 003's 1 + (rate / 154)^0.54
   OUT_PREFIX_cracks.png         crack-class shares of crack length against the strain rate
+  OUT_PREFIX_dif.csv            the DIF table: striker speed, mean strain rate, dynamic strength,
+                                DIF, paper 003's DIF, max |eta| from half the peak to the peak
+A striker-speed series is a batch: vorodec batch models/batch_shpb_dif.toml, then this script
+over its case folders.
 
 Usage: postproc/plot_shpb.py RUN [RUN ...] [--series OUT_PREFIX --static-strength PA]
 Needs Debian's /usr/bin/python3 with numpy and matplotlib.
@@ -102,7 +106,8 @@ def series(runs, prefix, static):
         lengths = [cl.get(c, {}).get("length_m", 0.0) for c in CLASSES]
         total = sum(lengths) or 1.0
         rows.append((h["mean_strain_rate_per_s"], h["dynamic_strength_Pa"] / static,
-                     [x / total for x in lengths]))
+                     [x / total for x in lengths], h["striker_velocity_m_per_s"],
+                     h["dynamic_strength_Pa"], h["eta_loading_max"]))
     ax.set_xlabel("specimen strain (10$^{-3}$, three-wave)")
     ax.set_ylabel("specimen stress (MPa, three-wave)")
     ax.legend(fontsize=8, title="striker")
@@ -111,6 +116,12 @@ def series(runs, prefix, static):
     plt.close(fig)
     rows.sort()
     rate = np.array([r[0] for r in rows])
+    with open(prefix + "_dif.csv", "w") as f:
+        f.write("striker_velocity_m_per_s,mean_strain_rate_per_s,dynamic_strength_Pa,dif,"
+                "paper_dif,eta_loading_max\n")
+        for r in rows:
+            f.write("%g,%.6g,%.8g,%.5g,%.5g,%.4g\n"
+                    % (r[3], r[0], r[4], r[1], 1 + (r[0] / 154) ** 0.54, r[5]))
     fig, ax = plt.subplots(figsize=(5.5, 4))
     ax.plot(rate, [r[1] for r in rows], "o-", label="vorodec")
     x = np.linspace(0, max(350, rate.max()), 200)

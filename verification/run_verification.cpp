@@ -198,7 +198,7 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
     out << report_row(r);
   }
   out << fmt::format(
-      "\nStatic strength (models/ucs_granite.toml, this build): {:.2f} MPa.\n\n"
+      "\nStatic strength (models/ucs_granite_undamped.toml, this build): {:.2f} MPa.\n\n"
       "| striker (m/s) | mean strain rate to peak (1/s) | dynamic strength (MPa) | DIF | "
       "paper's DIF | eta at peak | max eta, half peak to peak | class | IG tensile | IG shear | "
       "TG tensile | TG shear | exit | wall time |\n|---|---|---|---|---|---|---|---|---|---|---|"
@@ -222,16 +222,18 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
                            ? fmt::format("{:.1f}", r.equilibrium_time * 1e6)
                            : std::string("never within 5 %"),
                        r.seconds);
-  const Ladder& l = v.ladder;
-  out << fmt::format(
-      "\n## {}\n\nReference: {} = {:.6g} Pa. Observed order: {}. `*` marks the "
-      "default.\n\n| {} | {} | error | wall time |\n|---|---|---|---|\n",
-      l.name, l.reference, l.reference_value, order_text(l), l.parameter, l.quantity);
-  for (const LadderRung& r : l.rungs)
-    out << fmt::format("| {:.4g}{} | {:.6g} | {:.3g} | {:.1f} s |\n", r.parameter,
-                       r.is_default ? " *" : "", r.value, r.error, r.seconds);
-  if (cost_accuracy_plot(l, dir, source_dir, "shpb_ladder"))
-    out << "\n![error against run time](shpb_ladder.png)\n";
+  for (const auto& [l, plot] : {std::pair{&v.ladder, "shpb_ladder"},
+                                std::pair{&v.block_ladder, "shpb_block_ladder"}}) {
+    out << fmt::format(
+        "\n### {}\n\nReference: {} = {:.6g} Pa. Observed order: {}. `*` marks the "
+        "default.\n\n| {} | {} | error | wall time |\n|---|---|---|---|\n",
+        l->name, l->reference, l->reference_value, order_text(*l), l->parameter, l->quantity);
+    for (const LadderRung& r : l->rungs)
+      out << fmt::format("| {:.4g}{} | {:.6g} | {:.3g} | {:.1f} s |\n", r.parameter,
+                         r.is_default ? " *" : "", r.value, r.error, r.seconds);
+    if (cost_accuracy_plot(*l, dir, source_dir, plot))
+      out << fmt::format("\n![error against run time]({}.png)\n", plot);
+  }
   return failed;
 }
 

@@ -184,7 +184,8 @@ struct NamedCase {
 std::vector<NamedCase> analytic_cases();
 
 // B5 under impact: models/shpb_granite.toml at striker speeds 5-50 m/s, the static strength from
-// models/ucs_granite.toml, and the dynamic strength at 10 m/s against the time step. Minutes.
+// models/ucs_granite_undamped.toml, and the dynamic strength at 10 m/s against the time step and
+// against the sub-block size. Minutes.
 struct ShpbRun {
   double speed = 0, seconds = 0;
   int exit_code = -1;
@@ -200,7 +201,7 @@ struct ShpbVerification {
   double static_strength = 0;  // Pa
   std::vector<ShpbRun> runs;
   std::vector<ShpbRise> rises;  // 10 m/s, the pulse's rise time varied
-  Ladder ladder;
+  Ladder ladder, block_ladder;
 };
 ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::string& binary,
                                  const std::filesystem::path& work);
