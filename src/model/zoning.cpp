@@ -13,15 +13,18 @@ namespace {
 
 // Rounded-corner arc (PHYSICS 2.2: tangent to both edges, radius d tan(beta/2) capped at 4d as in
 // model/build.cpp) from the unit directions u (to the previous corner) and w (to the next), without
-// trigonometry (this runs for every boundary gridpoint every step). With cos(beta) = u.w:
-// tan(beta/2) = |u x w| / (1 + u.w), and the centre lies at R / sin(beta/2) along the inward
-// bisector, i.e. at R perp(w - u) / (1 - u.w). perp(w - u) stays defined at straight (180 degree)
-// corners, which boundary gridpoints along an edge form.
+// trigonometry (this runs for every boundary gridpoint every step): tan(beta/2) = |u - w| /
+// |u + w|, and the centre lies at R / sin(beta/2) along the inward bisector, i.e. at
+// R perp(w - u) / (1 - u.w) with 1 - u.w = |u - w|^2 / 2. Boundary gridpoints along an edge form
+// straight (180 degree) corners: there |u + w| is round-off, so the radius takes the cap, where
+// |u x w| / (1 + u.w) (both round-off) gave any radius down to 0 and put the arc's centre on the
+// edge, and detection then chose a neighbour edge by chance (issue 26: a false gap, a crack at
+// 0.2 % of the peak).
 void round_gridpoint(Point u, Point c, Point w, double d, Point& centre, double& radius) {
-  const double cosine = dot(u, w), sine = std::abs(cross(u, w));
-  radius = sine >= 4.0 * (1.0 + cosine) ? 4.0 * d : d * sine / (1.0 + cosine);
-  const Point f = w - u;
-  centre = c + (radius / (1.0 - cosine)) * Point{-f.y, f.x};
+  const Point f = w - u, s = u + w;
+  const double a = std::sqrt(dot(f, f)), b = std::sqrt(dot(s, s));
+  radius = a >= 4.0 * b ? 4.0 * d : d * a / b;
+  centre = c + (radius / (0.5 * a * a)) * Point{-f.y, f.x};
 }
 
 }  // namespace
@@ -153,23 +156,39 @@ void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& ou
   for (std::int64_t i = 0; i < nz; ++i) {
     const auto zi = static_cast<std::size_t>(i);
     const Zone& q = z.zones[zi];
-    double exx = 0, eyy = 0, gxy = 0;
+    // Deformation gradient F = [[a, b], [c, d]] = I + grad u over the initial zone.
+    double a = 1, b = 0, c = 0, d = 1;
     for (std::size_t k = 0; k < 3; ++k) {
       const std::uint32_t g = q.gp[k];
       const double ux = x[g] - x0[g], uy = y[g] - y0[g];
-      exx += q.bx[k] * ux;
-      eyy += q.by[k] * uy;
-      gxy += q.by[k] * ux + q.bx[k] * uy;
+      a += q.bx[k] * ux;
+      b += q.by[k] * ux;
+      c += q.bx[k] * uy;
+      d += q.by[k] * uy;
     }
+    // Polar decomposition F = R U (2D: R turns by atan2(c - b, a + d)); the strain U - I is
+    // the zone's own, so a rigid rotation of any size leaves it stress-free.
+    const double r = std::hypot(a + d, c - b), cs = (a + d) / r, sn = (c - b) / r;
+    const double exx = cs * a + sn * c - 1.0, eyy = cs * d - sn * b - 1.0;
+    const double exy = cs * b + sn * d;  // U is symmetric: the tensor shear strain
     const double vol = q.lambda * (exx + eyy);
-    const ZoneStress s{vol + 2.0 * q.shear * exx, vol + 2.0 * q.shear * eyy, q.shear * gxy, vol};
-    z.stress[zi] = s;
-    z.strain[zi] = {exx, eyy, gxy};
+    const double txx = vol + 2.0 * q.shear * exx, tyy = vol + 2.0 * q.shear * eyy;
+    const double txy = 2.0 * q.shear * exy;
+    // Nominal stress P = R T (T the Biot stress D (U - I)), the derivative of the zone's energy
+    // A0 T:(U - I) / 2 by F: F^k = -A0 P . grad N_k.
+    const double pxx = cs * txx - sn * txy, pxy = cs * txy - sn * tyy;
+    const double pyx = sn * txx + cs * txy, pyy = sn * txy + cs * tyy;
     auto& f = z.zone_force[zi];
-    for (std::size_t k = 0; k < 3; ++k) {  // F^k = -A sigma . grad N_k
-      f[2 * k] = -q.area * (s.xx * q.bx[k] + s.xy * q.by[k]);
-      f[2 * k + 1] = -q.area * (s.xy * q.bx[k] + s.yy * q.by[k]);
+    for (std::size_t k = 0; k < 3; ++k) {
+      f[2 * k] = -q.area * (pxx * q.bx[k] + pxy * q.by[k]);
+      f[2 * k + 1] = -q.area * (pyx * q.bx[k] + pyy * q.by[k]);
     }
+    // Stress and strain turned into the world frame: R T R^T and R (U - I) R^T.
+    const double c2 = cs * cs, s2 = sn * sn, cssn = cs * sn;
+    z.stress[zi] = {c2 * txx - 2.0 * cssn * txy + s2 * tyy, s2 * txx + 2.0 * cssn * txy + c2 * tyy,
+                    cssn * (txx - tyy) + (c2 - s2) * txy, vol};
+    z.strain[zi] = {c2 * exx - 2.0 * cssn * exy + s2 * eyy, s2 * exx + 2.0 * cssn * exy + c2 * eyy,
+                    2.0 * (cssn * (exx - eyy) + (c2 - s2) * exy)};
   }
   const auto ng = static_cast<std::int64_t>(z.gridpoints());
   out_fx.resize(z.gridpoints());

@@ -1,9 +1,11 @@
 #pragma once
 // Deformable blocks (PHYSICS 7): each is zoned into constant-strain triangles whose corners are
-// gridpoints with lumped mass. Stress is total small-strain linear elasticity (plane strain):
-// sigma = D eps(u), u = x - x0, with the shape derivatives of the initial zone, so a uniform
-// strain gives exactly uniform stress (patch test) and there is no drift; large rotations of a
-// deformable block are not objective (not supported).
+// gridpoints with lumped mass. Stress is linear elasticity (plane strain) in each zone's own
+// frame (co-rotational, total): F = I + grad u over the initial zone, F = R U (polar
+// decomposition), Biot strain U - I, stress T = D (U - I), turned to the world as R T R^T. A
+// rigid rotation of any size is stress-free, a uniform strain gives exactly uniform stress (patch
+// test), the zone forces derive from the strain energy (no drift), and for small rotations this is
+// small-strain elasticity.
 #include <array>
 #include <cstdint>
 #include <vector>
