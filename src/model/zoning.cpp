@@ -168,7 +168,8 @@ void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& ou
     }
     // Polar decomposition F = R U (2D: R turns by atan2(c - b, a + d)); the strain U - I is
     // the zone's own, so a rigid rotation of any size leaves it stress-free.
-    const double r = std::hypot(a + d, c - b), cs = (a + d) / r, sn = (c - b) / r;
+    const double inv_r = 1.0 / std::sqrt((a + d) * (a + d) + (c - b) * (c - b));
+    const double cs = (a + d) * inv_r, sn = (c - b) * inv_r;
     const double exx = cs * a + sn * c - 1.0, eyy = cs * d - sn * b - 1.0;
     const double exy = cs * b + sn * d;  // U is symmetric: the tensor shear strain
     const double vol = q.lambda * (exx + eyy);
