@@ -69,14 +69,15 @@ std::vector<double> block_densities(const io::GrainConfig& g, const geometry::Te
 }
 
 // Block bars: linear springs jkn = E / h between a bar's blocks (a column of blocks of length h
-// on springs per unit length k carries waves at sqrt(k h / rho) = c0), no shear stiffness
-// (Poisson's ratio 0).
+// on springs per unit length k carries waves at sqrt(k h / rho) = c0) and jks = G / h with
+// G = E / 2, the shear modulus at Poisson's ratio 0 (rigid blocks have no Poisson effect; without
+// shear stiffness the column kinks sideways under a crushed specimen's push).
 void add_bar_laws(const io::ShpbConfig& b, std::vector<std::unique_ptr<laws::LawGroup>>& groups,
                   solver::LawTable& table) {
   const auto spring = [&](double e) {
     laws::LawParams p;
     p["jkn"] = model::Distribution::constant(e / b.bar_block_length);
-    p["jks"] = model::Distribution::constant(0.0);
+    p["jks"] = model::Distribution::constant(0.5 * e / b.bar_block_length);
     groups.push_back(laws::find_law("linear_elastic")->make(p, 0));
     return static_cast<int>(groups.size() - 1);
   };

@@ -193,6 +193,8 @@ struct ShpbRun {
   double strength = 0, rate = 0, eta_loading = 0, eta_peak = 0, strain_at_peak = 0;
   bool class_two = false;
   std::array<double, 4> crack_share{};  // of crack length, in measure::kCrackClassNames' order
+  // The same impact with bars built from blocks: three-wave and face-force peaks, rate, time.
+  double block_strength = 0, block_faces = 0, block_rate = 0, block_seconds = 0;
 };
 struct ShpbRise {
   double rise, strength, rate, eta_loading, eta_peak, equilibrium_time, seconds;

@@ -200,6 +200,13 @@ ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::strin
     }
     for (std::size_t k = 0; k < 4; ++k) row.crack_share[k] = len[k] / total;
     row.status = r.exit_code == 0 ? "finished" : json_string(r.summary, "status");
+    const ModelRun b = run_model(binary, model, work / fmt::format("blocks_v{}", speed),
+                                 fmt::format("--set shpb.bars=blocks --set shpb.striker_velocity={}",
+                                             speed));
+    row.block_strength = json_number(b.summary, "dynamic_strength_Pa");
+    row.block_faces = json_number(b.summary, "peak_face_force_stress_Pa");
+    row.block_rate = json_number(b.summary, "mean_strain_rate_per_s");
+    row.block_seconds = b.seconds;
     v.runs.push_back(row);
   }
   // The pulse's rise time at 10 m/s (models/shpb_granite.toml: 30 us): equilibrium and strength.
