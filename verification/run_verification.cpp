@@ -215,11 +215,19 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
          "exact bars (MPa) | block bars, three-wave (MPa) | block bars, face forces (MPa) | "
          "block / exact | block bars' mean rate (1/s) | DIF (block bars) | wall time exact / "
          "blocks |\n|---|---|---|---|---|---|---|---|\n";
-  for (const ShpbRun& r : v.runs)
-    out << fmt::format("| {} | {:.1f} | {:.1f} | {:.1f} | {:.3f} | {:.1f} | {:.2f} | {:.1f} / {:.1f} s |\n",
-                       r.speed, r.strength / 1e6, r.block_strength / 1e6, r.block_faces / 1e6,
-                       r.block_strength / r.strength, r.block_rate,
-                       r.block_strength / v.static_strength, r.seconds, r.block_seconds);
+  for (const ShpbRun& r : v.runs) {
+    // A run stopped before its analysis window closed has no three-wave record.
+    const bool analysed = r.block_strength > 0;
+    const auto shown = [analysed](double x, const char* f) {
+      return analysed ? fmt::format(fmt::runtime(f), x) : std::string("stopped");
+    };
+    out << fmt::format("| {} | {:.1f} | {} | {:.1f} | {} | {} | {} | {:.1f} / {:.1f} s |\n",
+                       r.speed, r.strength / 1e6, shown(r.block_strength / 1e6, "{:.1f}"),
+                       r.block_faces / 1e6, shown(r.block_strength / r.strength, "{:.3f}"),
+                       shown(r.block_rate, "{:.1f}"),
+                       shown(r.block_strength / v.static_strength, "{:.2f}"), r.seconds,
+                       r.block_seconds);
+  }
   out << "\nThe pulse's rise time at 10 m/s (the model's 30 us is an assumption: paper 003 gives "
          "no pulse shape):\n\n| rise time (us) | strength (MPa) | mean rate (1/s) | max eta, half "
          "peak to peak | eta at peak | equilibrium from (us) | wall time |\n"
