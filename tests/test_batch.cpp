@@ -97,6 +97,20 @@ TEST_F(Batch, ResultsTableHasOneRowPerCaseInCaseOrder) {
   EXPECT_EQ(rows[0].at("solver.max_steps"), "");
 }
 
+TEST_F(Batch, RunAgainOnItsFinishedFolderKeepsEveryCaseAndRewritesTheTable) {
+  const std::string command =
+      "batch " + models + "batch_small.toml --no-vtk --out " + (dir_ / "out").string();
+  ASSERT_EQ(run_capture(command).code, 5);
+  const auto first = read_table(dir_ / "out" / "results.csv");
+  const Outcome again = run_capture(command);
+  EXPECT_EQ(again.code, 5) << again.output;  // was: "lost track of the running cases", exit 1
+  EXPECT_NE(again.output.find("kept, it finished before"), std::string::npos) << again.output;
+  const auto rows = read_table(dir_ / "out" / "results.csv");
+  ASSERT_EQ(rows.size(), first.size());
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    EXPECT_EQ(rows[i].at("peak_stress_Pa"), first[i].at("peak_stress_Pa"));
+}
+
 TEST_F(Batch, FailedCaseIsARowWithItsExitCode) {
   run_capture("batch " + models + "batch_small.toml --no-vtk --out " + (dir_ / "out").string());
   const auto rows = read_table(dir_ / "out" / "results.csv");

@@ -188,6 +188,7 @@ std::map<std::size_t, Outcome> run_cases(const io::BatchPlan& plan,
       const double earlier = resume ? earlier_wall_seconds(dir) : 0.0;
       running[spawn_case(args, dir, resume)] = {i, clock::now(), earlier};
     }
+    if (running.empty()) continue;  // every remaining case had finished before
     int status = 0;
     const pid_t pid = waitpid(-1, &status, 0);
     if (pid < 0) throw std::runtime_error("lost track of the running cases");
