@@ -164,6 +164,39 @@ TEST(Deformable, SpinningBlockKeepsItsEnergy) {
   EXPECT_NEAR(z.y[0] - cy, gx, 0.02 * radius);
 }
 
+// Issue 26: boundary gridpoints along a straight edge (180 degree corners) take the 4d arc cap
+// after any rigid turn, and their arc centre lies inside the block; round-off in the radius
+// once put the centre on the edge, and detection then chose a neighbour edge by chance.
+TEST(Deformable, StraightBoundaryGridpointsTakeTheCappedArc) {
+  model::Model m = zoned_pentagon();
+  auto& z = m.zoning;
+  const auto& bl = m.blocks;
+  const double d = m.rounding_length;
+  std::size_t straight = 0;
+  for (const double angle : {0.0, 0.37, 1.9, 3.3}) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    for (std::size_t g = 0; g < z.gridpoints(); ++g) {
+      z.x[g] = 0.013 + c * z.x0[g] - s * z.y0[g];
+      z.y[g] = -0.07 + s * z.x0[g] + c * z.y0[g];
+    }
+    model::refresh_deformable(m);
+    for (std::uint32_t k = bl.corner_begin[0]; k < bl.corner_begin[1]; ++k) {
+      const auto g = static_cast<std::size_t>(z.corner_gp[k]);
+      const auto prev =
+          static_cast<std::size_t>(z.corner_gp[k == 0 ? bl.corner_begin[1] - 1 : k - 1]);
+      const auto next = static_cast<std::size_t>(z.corner_gp[bl.shape[k].next]);
+      const double turn = (z.x0[g] - z.x0[prev]) * (z.y0[next] - z.y0[g]) -
+                          (z.y0[g] - z.y0[prev]) * (z.x0[next] - z.x0[g]);
+      if (std::abs(turn) > 1e-12) continue;  // a polygon corner, not a straight gridpoint
+      ++straight;
+      EXPECT_EQ(bl.shape[k].radius, 4.0 * d) << "gridpoint " << g << ", angle " << angle;
+      const model::Point off = bl.world[k].centre - bl.world[k].corner;
+      EXPECT_NEAR(std::sqrt(dot(off, off)), 4.0 * d, 1e-9 * d);
+    }
+  }
+  EXPECT_GT(straight, 8u);
+}
+
 TEST(Deformable, LumpedMassesSumToBlockMass) {
   model::Model m;
   m.rounding_length = 1e-4;
