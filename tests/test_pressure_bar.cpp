@@ -106,7 +106,8 @@ TEST(ShpbRun, BlockBarsCarryTheStrikersPulseAndAgreeWithTheFaceForces) {
     const std::string s = slurp(out / "summary.json");
     if (std::string(rise) == "0") {
       EXPECT_NEAR(json_number(s, "measured_incident_stress_Pa"),
-                  json_number(s, "incident_stress_Pa"), 0.01 * json_number(s, "incident_stress_Pa"));
+                  json_number(s, "incident_stress_Pa"),
+                  0.01 * json_number(s, "incident_stress_Pa"));
       EXPECT_NEAR(json_number(s, "measured_pulse_duration_s"), json_number(s, "pulse_duration_s"),
                   0.02 * json_number(s, "pulse_duration_s"));
     } else {

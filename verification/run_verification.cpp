@@ -221,12 +221,11 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
     const auto shown = [analysed](double x, const char* f) {
       return analysed ? fmt::format(fmt::runtime(f), x) : std::string("stopped");
     };
-    out << fmt::format("| {} | {:.1f} | {} | {:.1f} | {} | {} | {} | {:.1f} / {:.1f} s |\n",
-                       r.speed, r.strength / 1e6, shown(r.block_strength / 1e6, "{:.1f}"),
-                       r.block_faces / 1e6, shown(r.block_strength / r.strength, "{:.3f}"),
-                       shown(r.block_rate, "{:.1f}"),
-                       shown(r.block_strength / v.static_strength, "{:.2f}"), r.seconds,
-                       r.block_seconds);
+    out << fmt::format(
+        "| {} | {:.1f} | {} | {:.1f} | {} | {} | {} | {:.1f} / {:.1f} s |\n", r.speed,
+        r.strength / 1e6, shown(r.block_strength / 1e6, "{:.1f}"), r.block_faces / 1e6,
+        shown(r.block_strength / r.strength, "{:.3f}"), shown(r.block_rate, "{:.1f}"),
+        shown(r.block_strength / v.static_strength, "{:.2f}"), r.seconds, r.block_seconds);
   }
   out << "\nThe pulse's rise time at 10 m/s (the model's 30 us is an assumption: paper 003 gives "
          "no pulse shape):\n\n| rise time (us) | strength (MPa) | mean rate (1/s) | max eta, half "
@@ -239,8 +238,8 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
                            ? fmt::format("{:.1f}", r.equilibrium_time * 1e6)
                            : std::string("never within 5 %"),
                        r.seconds);
-  for (const auto& [l, plot] : {std::pair{&v.ladder, "shpb_ladder"},
-                                std::pair{&v.block_ladder, "shpb_block_ladder"}}) {
+  for (const auto& [l, plot] :
+       {std::pair{&v.ladder, "shpb_ladder"}, std::pair{&v.block_ladder, "shpb_block_ladder"}}) {
     out << fmt::format(
         "\n### {}\n\nReference: {} = {:.6g} Pa. Observed order: {}. `*` marks the "
         "default.\n\n| {} | {} | error | wall time |\n|---|---|---|---|\n",

@@ -6,8 +6,9 @@
 //   pulse's arrival at the specimen; the bars' earlier history is known exactly.
 // - bars built from blocks (model/build.hpp BlockBars, the platens their first blocks): the
 //   striker's pulse enters through the incident bar's far end (a quiet boundary with an input),
-//   the transmitted bar's far end is quiet where asked, and the gauges record the strain of the joint nearest them. The run starts at the impact; its outputs
-//   are shifted by incident length / c0 to the same time 0.
+//   the transmitted bar's far end is quiet where asked, and the gauges record the strain of the
+//   joint nearest them. The run starts at the impact; its outputs are shifted by incident length /
+//   c0 to the same time 0.
 // The test runs for [shpb] duration after time 0.
 #include <optional>
 

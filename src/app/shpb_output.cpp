@@ -147,7 +147,8 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
       "\"striker_length_m\": {:.6g}, "
       "\"incident_stress_Pa\": {:.8g}, \"pulse_duration_s\": {:.6g}, "
       "\"measured_incident_stress_Pa\": {}, \"measured_pulse_duration_s\": {}, "
-      "\"analysis_window_s\": {:.6g},\n    \"dynamic_strength_Pa\": {}, \"peak_time_s\": {}, \"strain_at_peak\": {}, "
+      "\"analysis_window_s\": {:.6g},\n    \"dynamic_strength_Pa\": {}, \"peak_time_s\": {}, "
+      "\"strain_at_peak\": {}, "
       "\"strain_rate_at_peak_per_s\": {}, "
       "\"mean_strain_rate_per_s\": {}, \"peak_face_force_stress_Pa\": {:.8g},\n"
       "    \"eta_at_peak\": {}, \"eta_loading_max\": {}, \"equilibrium_tolerance\": {:.4g}, "
@@ -159,15 +160,14 @@ std::string shpb_json(const BarsView& b, const solver::Solver& solver, const mod
       cfg.block_bars ? "blocks" : "exact", cfg.striker_velocity, cfg.striker_length,
       0.5 * cfg.incident.impedance() * cfg.striker_velocity,
       2.0 * cfg.striker_length / cfg.incident.wave_speed(), number(pulse.plateau),
-      number(pulse.duration), analysis_window(b),
-      m.valid ? number(m.peak_stress) : "null", m.valid ? number(m.peak_time) : "null",
-      m.valid ? number(m.strain_at_peak) : "null", m.valid ? number(m.strain_rate_at_peak) : "null",
+      number(pulse.duration), analysis_window(b), m.valid ? number(m.peak_stress) : "null",
+      m.valid ? number(m.peak_time) : "null", m.valid ? number(m.strain_at_peak) : "null",
+      m.valid ? number(m.strain_rate_at_peak) : "null",
       m.valid ? number(m.mean_strain_rate) : "null", peak_direct,
       m.valid ? number(m.eta_at_peak) : "null", number(m.eta_loading), cfg.equilibrium_tolerance,
       number(m.equilibrium_time), w_in, w_ref, w_tr, w_in - w_ref - w_tr, e.boundary_work,
       e.breakage, e.slip, e.damping, solver.kinetic_energy(),
-      solver.contact_strain_energy() + solver.zone_strain_energy(),
-      fragments.size(), sizes);
+      solver.contact_strain_energy() + solver.zone_strain_energy(), fragments.size(), sizes);
 }
 
 }  // namespace vorodec::app

@@ -118,8 +118,9 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
     const auto blocks = [&](double length) {
       return std::max(2, static_cast<int>(std::lround(length / h)));
     };
-    bars = model::BlockBars{b.incident.width,         h, blocks(b.incident.length),
-                            blocks(b.transmitted.length), b.incident.density, b.transmitted.density};
+    bars = model::BlockBars{b.incident.width,          h,
+                            blocks(b.incident.length), blocks(b.transmitted.length),
+                            b.incident.density,        b.transmitted.density};
   }
   s.model = std::make_unique<model::Model>(
       model::build_model(tess, {cfg.density, d, true, density, bars}, deformable));

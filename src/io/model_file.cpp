@@ -823,8 +823,9 @@ ShpbConfig read_shpb(TomlSection sec) {
     s.bar_block_length = sec.positive("bar_block_length", 0.1 * s.incident.width);
     if (!s.incident.quiet_far_end)
       sec.sub("incident_bar")
-          .fail("far_end", "with bars = \"blocks\" the striker's pulse enters through the incident "
-                           "bar's far end, which absorbs what returns: far_end = \"quiet\"");
+          .fail("far_end",
+                "with bars = \"blocks\" the striker's pulse enters through the incident "
+                "bar's far end, which absorbs what returns: far_end = \"quiet\"");
     if (s.transmitted.length < 2.0 * s.bar_block_length)
       sec.fail("bar_block_length",
                fmt::format("{} m: each bar needs at least two blocks", s.bar_block_length));

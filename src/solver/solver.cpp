@@ -105,7 +105,8 @@ void Solver::partition() {
       }
     }
   }
-  // The platens' contacts keep their forces whatever the thread count: contact_force_from reads them.
+  // The platens' contacts keep their forces whatever the thread count: contact_force_from reads
+  // them.
   for (std::size_t b = 0; b < nb; ++b)
     if (model_.blocks.group[b] == model::Group::top_platen ||
         model_.blocks.group[b] == model::Group::bottom_platen)

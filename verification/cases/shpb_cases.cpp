@@ -119,7 +119,8 @@ std::vector<CaseResult> a12_bar_on_bar() {
 
 std::vector<CaseResult> a12_block_bars(const std::string& source_dir, const std::string& binary,
                                        const std::filesystem::path& work) {
-  const std::filesystem::path model = std::filesystem::path(source_dir) / "models/shpb_granite.toml";
+  const std::filesystem::path model =
+      std::filesystem::path(source_dir) / "models/shpb_granite.toml";
   // A square pulse at 2 m/s (41 MPa) leaves the granite intact, so the run goes to its end.
   const ModelRun a = run_model(binary, model, work / "blocks_a12",
                                "--set shpb.bars=blocks --set shpb.rise_time=0 "
@@ -161,7 +162,8 @@ ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::strin
   ShpbVerification v;
   const std::filesystem::path src(source_dir);
   // The impact specimen loaded quasi-statically, undamped like the impact (about 3 minutes).
-  const ModelRun stat = run_model(binary, src / "models/ucs_granite_undamped.toml", work / "static");
+  const ModelRun stat =
+      run_model(binary, src / "models/ucs_granite_undamped.toml", work / "static");
   v.static_strength = json_number(stat.summary, "peak_stress_Pa");
   const std::filesystem::path model = src / "models/shpb_granite.toml";
   for (const double speed : {5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 50.0}) {
@@ -200,9 +202,9 @@ ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::strin
     }
     for (std::size_t k = 0; k < 4; ++k) row.crack_share[k] = len[k] / total;
     row.status = r.exit_code == 0 ? "finished" : json_string(r.summary, "status");
-    const ModelRun b = run_model(binary, model, work / fmt::format("blocks_v{}", speed),
-                                 fmt::format("--set shpb.bars=blocks --set shpb.striker_velocity={}",
-                                             speed));
+    const ModelRun b =
+        run_model(binary, model, work / fmt::format("blocks_v{}", speed),
+                  fmt::format("--set shpb.bars=blocks --set shpb.striker_velocity={}", speed));
     row.block_strength = json_number(b.summary, "dynamic_strength_Pa");
     row.block_faces = json_number(b.summary, "peak_face_force_stress_Pa");
     row.block_rate = json_number(b.summary, "mean_strain_rate_per_s");

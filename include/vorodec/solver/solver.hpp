@@ -40,8 +40,8 @@ struct Energy {
   double damping = 0.0;
   double slip = 0.0;
   double breakage = 0.0;
-  double viscous = 0.0;          // dashpots of viscous (Burger's) contacts
-  double corrosion = 0.0;        // strain energy the stress-corrosion layers took from bonds
+  double viscous = 0.0;    // dashpots of viscous (Burger's) contacts
+  double corrosion = 0.0;  // strain energy the stress-corrosion layers took from bonds
 };
 
 class Solver {
