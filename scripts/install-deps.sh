@@ -8,6 +8,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
   # Checkpoints: cereal binary archives (header-only), zlib's CRC-32.
   libcereal-dev zlib1g-dev
+  # Calibration: NLopt's derivative-free optimisers (BOBYQA).
+  libnlopt-cxx-dev
   libvtk9-dev python3-vtk9 python3-matplotlib python3-numpy
   # MPI for `vorodec batch` across machines (mpirun; optional at build time, used by the tests).
   libopenmpi-dev openmpi-bin

@@ -59,6 +59,22 @@ std::vector<std::string> Cluster::gather(const std::string& mine) const {
   return out;
 }
 
+std::vector<std::string> Cluster::share(const std::string& mine) const {
+  if (!joined_) return {mine};
+  const int length = static_cast<int>(mine.size());
+  std::vector<int> lengths(static_cast<std::size_t>(size_)), offsets(lengths.size());
+  MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (std::size_t r = 1; r < lengths.size(); ++r) offsets[r] = offsets[r - 1] + lengths[r - 1];
+  std::string all(static_cast<std::size_t>(offsets.back() + lengths.back()), '\0');
+  MPI_Allgatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(),
+                 MPI_CHAR, MPI_COMM_WORLD);
+  std::vector<std::string> out;
+  for (std::size_t r = 0; r < lengths.size(); ++r)
+    out.push_back(
+        all.substr(static_cast<std::size_t>(offsets[r]), static_cast<std::size_t>(lengths[r])));
+  return out;
+}
+
 void Cluster::abort(int code) const {
   if (joined_ && size_ > 1) MPI_Abort(MPI_COMM_WORLD, code);
   std::exit(code);
@@ -74,6 +90,10 @@ Cluster::Cluster() {
 Cluster::~Cluster() = default;
 
 std::vector<std::string> Cluster::gather(const std::string& mine) const {
+  return {mine};
+}
+
+std::vector<std::string> Cluster::share(const std::string& mine) const {
   return {mine};
 }
 

@@ -20,6 +20,8 @@ class Cluster {
   bool launched_without_mpi() const { return unsupported_; }
   // Rank 0 receives every rank's text, in rank order; the other ranks receive nothing.
   std::vector<std::string> gather(const std::string& mine) const;
+  // Every rank receives every rank's text, in rank order.
+  std::vector<std::string> share(const std::string& mine) const;
   // Stops every rank (a rank that returns alone would leave the others waiting in gather).
   [[noreturn]] void abort(int code) const;
 

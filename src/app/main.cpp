@@ -1,4 +1,4 @@
-// The vorodec command: run, resume, check and build model files, run batches.
+// The vorodec command: run, resume, check and build model files, run batches, calibrate.
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "vorodec/app/batch.hpp"
+#include "vorodec/app/calibrate.hpp"
 #include "vorodec/app/simulation.hpp"
 #include "vorodec/checkpoint/checkpoint_file.hpp"
 #include "vorodec/io/model_file.hpp"
@@ -146,6 +147,18 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   batch->add_flag("--no-vtk", no_vtk, "cases write no VTK series");
 
+  app::CalibrateOptions calibrate_options;
+  auto* calibrate = cli.add_subcommand(
+      "calibrate", "fit model parameters to laboratory targets (also under mpirun)");
+  calibrate->add_option("calibration_file", calibrate_options.file, "calibration file (.toml)")
+      ->required();
+  calibrate->add_option("--out", calibrate_options.out,
+                        "results folder (default: the file's `output`)");
+  calibrate
+      ->add_option("--jobs", calibrate_options.jobs,
+                   "runs at a time (default: all cores; 1 per MPI rank)")
+      ->check(CLI::PositiveNumber);
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -156,6 +169,7 @@ int main(int argc, char** argv) {
     batch_options.write_vtk = !no_vtk;
     return app::run_batch(batch_options);
   }
+  if (calibrate->parsed()) return app::calibrate(calibrate_options);
   if (threads > 0) omp_set_num_threads(threads);
   try {
     if (resume->parsed()) {

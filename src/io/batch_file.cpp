@@ -7,13 +7,11 @@
 #include <set>
 #include <sstream>
 
+#include "override.hpp"
 #include "toml_section.hpp"
 
 namespace vorodec::io {
 
-namespace {
-
-// A value as TOML text; floats in their shortest exact form (5e6 -> 5000000.0, 0.005 -> 0.005).
 std::string toml_text(const toml::node& n) {
   if (const auto d = n.value_exact<double>()) {
     std::string t = fmt::format("{}", *d);
@@ -24,6 +22,8 @@ std::string toml_text(const toml::node& n) {
   n.visit([&](const auto& v) { s << v; });
   return s.str();
 }
+
+namespace {
 
 std::string origin(const std::string& file, const toml::node& n) {
   return fmt::format("{}:{}", file, n.source().begin.line);
@@ -42,6 +42,8 @@ void flatten(const toml::table& t, const std::string& prefix, const std::string&
   }
 }
 
+}  // namespace
+
 std::vector<Override> read_set(TomlSection& sec) {
   std::vector<Override> out;
   if (const toml::node* n = sec.node("set")) {
@@ -50,6 +52,8 @@ std::vector<Override> read_set(TomlSection& sec) {
   }
   return out;
 }
+
+namespace {
 
 std::filesystem::path read_model(TomlSection& sec, const std::filesystem::path& batch_file) {
   std::filesystem::path p = sec.string("model", nullptr);

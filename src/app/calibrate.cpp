@@ -1,0 +1,426 @@
+#include "vorodec/app/calibrate.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <nlopt.hpp>
+#include <sstream>
+#include <thread>
+
+#include "calibration_report.hpp"
+#include "case_runner.hpp"
+#include "cluster.hpp"
+#include "vorodec/io/atomic_file.hpp"
+
+namespace vorodec::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int bad_input = 2, budget_spent = 5;
+
+// A target (bad input found only by running: a test that does not produce its quantity).
+struct TargetError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// sigma1 = C0 + q sigma3 by least squares, read as Mohr-Coulomb: c (Pa) and phi (deg).
+std::pair<double, double> envelope(const std::vector<double>& s3, const std::vector<double>& s1) {
+  const double n = static_cast<double>(s3.size());
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < s3.size(); ++i) mx += s3[i] / n, my += s1[i] / n;
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < s3.size(); ++i)
+    sxy += (s3[i] - mx) * (s1[i] - my), sxx += (s3[i] - mx) * (s3[i] - mx);
+  const double q = sxy / sxx, c0 = my - q * mx;
+  const double phi = std::asin(std::clamp((q - 1) / (q + 1), -1.0, 1.0));
+  return {c0 * (1 - std::sin(phi)) / (2 * std::cos(phi)), phi * 180 / M_PI};
+}
+
+class Calibration {
+ public:
+  Calibration(io::CalibrationPlan plan, fs::path out, int jobs, const Cluster& cluster)
+      : plan_(std::move(plan)), out_(std::move(out)), jobs_(jobs), cluster_(cluster) {
+    for (const io::CalibrationTarget& t : plan_.targets)
+      if (t.kind == io::TargetKind::summary &&
+          std::find(quantities_.begin(), quantities_.end(), t.quantity) == quantities_.end())
+        quantities_.push_back(t.quantity);
+    if (std::find(quantities_.begin(), quantities_.end(), "peak_stress_Pa") == quantities_.end())
+      quantities_.push_back("peak_stress_Pa");
+    // A calibration run again on its folder replays its finished evaluations at their earlier
+    // times: the wall-time budget counts each second once.
+    std::istringstream history(read_text(out_ / "history.csv"));
+    std::string line;
+    std::getline(history, line);
+    while (std::getline(history, line)) {
+      const auto a = line.find(','), b = line.find(',', a + 1), c = line.find(',', b + 1);
+      earlier_elapsed_.push_back(std::stod(line.substr(c + 1)));
+    }
+  }
+
+  int run();
+
+ private:
+  double elapsed() const {
+    return offset_seconds_ +
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  std::size_t runs_per_point() const { return plan_.tests.size() * plan_.seeds.size(); }
+  bool affordable(std::size_t points) const {
+    return runs_used_ + points * runs_per_point() <= static_cast<std::size_t>(plan_.max_runs) &&
+           elapsed() < plan_.max_wall_seconds;
+  }
+  bool converged(const Evaluation& e) const { return e.worst <= 1.0; }
+
+  // Parameters <-> the optimiser's coordinates in [0, 1] (log or linear in each parameter).
+  double to_unit(std::size_t i, double v) const {
+    const io::CalibrationParameter& p = plan_.parameters[i];
+    return p.log_scale ? std::log(v / p.min) / std::log(p.max / p.min)
+                       : (v - p.min) / (p.max - p.min);
+  }
+  double from_unit(std::size_t i, double u) const {
+    const io::CalibrationParameter& p = plan_.parameters[i];
+    u = std::clamp(u, 0.0, 1.0);
+    return p.log_scale ? p.min * std::pow(p.max / p.min, u) : p.min + u * (p.max - p.min);
+  }
+
+  std::vector<Evaluation> evaluate(const std::vector<std::vector<double>>& points,
+                                   const std::string& phase);
+  Evaluation score(std::vector<double> values, const std::string& phase, std::size_t index,
+                   const std::vector<std::vector<double>>& per_case) const;
+  void record(Evaluation e);
+  std::vector<double> dimensional_guess(const Evaluation& e) const;
+  Sensitivity sensitivity(const Evaluation& base);
+  std::vector<double> linearised_step(const Evaluation& base, const Sensitivity& s) const;
+  void optimise();
+  void finish(bool done);
+
+  io::CalibrationPlan plan_;
+  fs::path out_;
+  int jobs_;
+  const Cluster& cluster_;
+  std::vector<std::string> quantities_;  // summary.json numbers read from every run
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  double offset_seconds_ = 0;            // s before start_ (replayed evaluations)
+  std::vector<double> earlier_elapsed_;  // s, per evaluation of an earlier invocation
+  std::size_t runs_used_ = 0;
+  std::vector<Evaluation> history_;
+  std::vector<Sensitivity> sensitivities_;
+  Evaluation best_;
+};
+
+// Runs every point's tests x seeds as one list of cases, dealt to the MPI ranks; every rank
+// receives every result, so all take the same next step.
+std::vector<Evaluation> Calibration::evaluate(const std::vector<std::vector<double>>& points,
+                                              const std::string& phase) {
+  std::vector<io::BatchCase> cases;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    for (std::size_t t = 0; t < plan_.tests.size(); ++t)
+      for (const std::uint64_t seed : plan_.seeds)
+        cases.push_back({fmt::format("e{:04d}/{}_seed{}", history_.size() + k + 1,
+                                     plan_.tests[t].name, seed),
+                         plan_.tests[t].model, io::run_overrides(plan_, t, seed, points[k])});
+  std::vector<std::size_t> mine;
+  for (std::size_t i = static_cast<std::size_t>(cluster_.rank()); i < cases.size();
+       i += static_cast<std::size_t>(cluster_.size()))
+    mine.push_back(i);
+  const std::string who = cluster_.size() > 1 ? fmt::format("rank {}: ", cluster_.rank()) : "";
+  std::string rows;
+  for (const auto& [i, o] : run_cases(cases, mine, out_ / "runs", {0, false}, jobs_, who)) {
+    const std::string summary = read_text(out_ / "runs" / cases[i].name / "summary.json");
+    rows += fmt::format("{} {} {:.17g} {}", i, o.exit_code, o.wall_seconds, o.kept ? 1 : 0);
+    for (const std::string& q : quantities_) {
+      const std::string v = summary_field(summary, q);
+      rows.append(" ").append(v.empty() ? std::string("nan") : v);
+    }
+    rows += '\n';
+  }
+  std::vector<std::vector<double>> per_case(cases.size());
+  for (const std::string& text : cluster_.share(rows)) {
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream in(line);
+      std::size_t i = 0;
+      in >> i;
+      std::vector<double> v;
+      std::string field;
+      while (in >> field) v.push_back(field == "nan" ? NAN : std::stod(field));
+      per_case.at(i) = v;  // exit code, wall time, kept, then the quantities
+    }
+  }
+  runs_used_ += cases.size();
+  std::vector<Evaluation> out;
+  const std::size_t n = runs_per_point();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const std::vector<std::vector<double>> mine_k(per_case.begin() + static_cast<long>(k * n),
+                                                  per_case.begin() + static_cast<long>(k * n + n));
+    out.push_back(score(points[k], phase, history_.size() + 1, mine_k));
+    const bool replayed = std::all_of(mine_k.begin(), mine_k.end(),
+                                      [](const std::vector<double>& c) { return c[2] == 1; });
+    if (replayed && out.back().index <= earlier_elapsed_.size()) {
+      offset_seconds_ = earlier_elapsed_[out.back().index - 1];
+      start_ = std::chrono::steady_clock::now();
+    }
+    record(out.back());
+  }
+  return out;
+}
+
+// Means and scatter over the seeds of each target, and the objective.
+Evaluation Calibration::score(std::vector<double> values, const std::string& phase,
+                              std::size_t index,
+                              const std::vector<std::vector<double>>& per_case) const {
+  Evaluation e;
+  e.index = index;
+  e.phase = phase;
+  e.values = std::move(values);
+  e.runs = runs_used_;
+  const std::size_t seeds = plan_.seeds.size();
+  auto quantity = [&](std::size_t test, std::size_t seed, const std::string& q) {
+    const std::vector<double>& c = per_case[test * seeds + seed];
+    const auto at = std::find(quantities_.begin(), quantities_.end(), q) - quantities_.begin();
+    if (c[0] != 0) e.failed_runs++;
+    return c[3 + static_cast<std::size_t>(at)];
+  };
+  for (const std::vector<double>& c : per_case) e.wall_seconds = std::max(e.wall_seconds, c[1]);
+  double sum = 0, weights = 0;
+  for (const io::CalibrationTarget& t : plan_.targets) {
+    std::vector<double> samples;
+    for (std::size_t s = 0; s < seeds; ++s) {
+      if (t.kind == io::TargetKind::summary) {
+        samples.push_back(quantity(t.tests[0], s, t.quantity));
+        continue;
+      }
+      std::vector<double> s3, s1;
+      for (const std::size_t test : t.tests) {
+        s3.push_back(plan_.tests[test].confining_stress);
+        s1.push_back(quantity(test, s, "peak_stress_Pa"));
+      }
+      const auto [c, phi] = envelope(s3, s1);
+      samples.push_back(t.kind == io::TargetKind::envelope_cohesion ? c : phi);
+    }
+    double mean = 0, var = 0;
+    for (const double v : samples) mean += v / static_cast<double>(seeds);
+    for (const double v : samples) var += (v - mean) * (v - mean);
+    const double sd = seeds > 1 ? std::sqrt(var / static_cast<double>(seeds - 1)) : 0.0;
+    const double error = t.absolute ? mean - t.value : (mean - t.value) / t.value;
+    e.mean.push_back(mean);
+    e.scatter.push_back(sd);
+    e.scaled_error.push_back(error / t.tolerance);
+    sum += t.weight * (error / t.tolerance) * (error / t.tolerance);
+    weights += t.weight;
+  }
+  e.objective = sum / weights;
+  e.worst = 0;
+  for (const double z : e.scaled_error) e.worst = std::max(e.worst, std::abs(z));
+  if (!std::isfinite(e.objective)) e.objective = e.worst = INFINITY;
+  return e;
+}
+
+void Calibration::record(Evaluation e) {
+  e.elapsed_seconds = elapsed();
+  history_.push_back(e);
+  fmt::print("evaluation {} ({}): objective {:.4g}, worst target {:.2f} tolerances, {} runs, "
+             "{:.0f} s\n",
+             e.index, e.phase, e.objective, e.worst, runs_used_, elapsed());
+  std::fflush(stdout);
+  if (best_.values.empty() || e.objective < best_.objective) best_ = e;
+  if (cluster_.rank() != 0) return;
+  write_history(out_, plan_, history_);
+}
+
+// Each parameter declared proportional to targets takes the ratio wanted / achieved (their
+// geometric mean if several).
+std::vector<double> Calibration::dimensional_guess(const Evaluation& e) const {
+  std::vector<double> v = e.values;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const io::CalibrationParameter& p = plan_.parameters[i];
+    if (p.scales.empty()) continue;
+    double log_factor = 0;
+    for (const std::size_t t : p.scales)
+      log_factor += std::log(plan_.targets[t].value / e.mean[t]) / static_cast<double>(p.scales.size());
+    if (std::isfinite(log_factor)) v[i] = std::clamp(v[i] * std::exp(log_factor), p.min, p.max);
+  }
+  return v;
+}
+
+// One step of each parameter (x (1 + step) on a log scale, + step x range on a linear one,
+// backwards at the upper bound), all run at once.
+Sensitivity Calibration::sensitivity(const Evaluation& base) {
+  Sensitivity s;
+  s.base = base.index;
+  std::vector<std::vector<double>> points;
+  for (std::size_t i = 0; i < base.values.size(); ++i) {
+    const io::CalibrationParameter& p = plan_.parameters[i];
+    std::vector<double> v = base.values;
+    const double up = p.log_scale ? v[i] * (1 + plan_.step) : v[i] + plan_.step * (p.max - p.min);
+    const double down = p.log_scale ? v[i] / (1 + plan_.step) : v[i] - plan_.step * (p.max - p.min);
+    v[i] = up <= p.max ? up : down;
+    points.push_back(v);
+  }
+  const std::vector<Evaluation> moved = evaluate(points, "sensitivity");
+  const std::size_t m = plan_.targets.size(), n = points.size();
+  s.jacobian = std::vector<double>(m * n);
+  s.elasticity = std::vector<double>(m * n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const double du = to_unit(j, points[j][j]) - to_unit(j, base.values[j]);
+    const double dlnp = std::log(std::abs(points[j][j] / base.values[j]));
+    s.evaluations.push_back(moved[j].index);
+    for (std::size_t i = 0; i < m; ++i) {
+      s.jacobian[i * n + j] = (moved[j].scaled_error[i] - base.scaled_error[i]) / du;
+      // d ln(target) / d ln(parameter): the micro-macro relation near the base point.
+      s.elasticity[i * n + j] = std::log(moved[j].mean[i] / base.mean[i]) / dlnp;
+    }
+  }
+  sensitivities_.push_back(s);
+  if (cluster_.rank() == 0) write_sensitivity(out_, plan_, history_, sensitivities_);
+  return s;
+}
+
+// The least-squares step of the linearised targets (the smallest such step), within the bounds.
+std::vector<double> Calibration::linearised_step(const Evaluation& base,
+                                                 const Sensitivity& s) const {
+  const long m = static_cast<long>(plan_.targets.size()), n = static_cast<long>(base.values.size());
+  Eigen::MatrixXd J(m, n);
+  Eigen::VectorXd r(m);
+  for (long i = 0; i < m; ++i) {
+    const double w = std::sqrt(plan_.targets[static_cast<std::size_t>(i)].weight);
+    r(i) = -w * base.scaled_error[static_cast<std::size_t>(i)];
+    for (long j = 0; j < n; ++j) J(i, j) = w * s.jacobian[static_cast<std::size_t>(i * n + j)];
+  }
+  const Eigen::VectorXd du = J.completeOrthogonalDecomposition().solve(r);
+  std::vector<double> v = base.values;
+  for (long j = 0; j < n; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    v[k] = from_unit(k, to_unit(k, v[k]) + du(j));
+  }
+  return v;
+}
+
+// BOBYQA (Powell's bounded quadratic-model search) in the unit coordinates from the best point.
+void Calibration::optimise() {
+  const std::size_t n = plan_.parameters.size();
+  nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));
+  opt.set_lower_bounds(std::vector<double>(n, 0.0));
+  opt.set_upper_bounds(std::vector<double>(n, 1.0));
+  // Steps below this move the targets less than the seed scatter: the search is done.
+  opt.set_xtol_abs(1e-3);
+  opt.set_initial_step(0.05);
+  std::exception_ptr failure;
+  auto objective = [&](const std::vector<double>& u) {
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = from_unit(i, u[i]);
+    try {
+      const Evaluation e = evaluate({v}, "optimiser").front();
+      if (converged(e) || !affordable(1)) opt.force_stop();
+      return e.objective;
+    } catch (...) {
+      failure = std::current_exception();
+      opt.force_stop();
+      return HUGE_VAL;
+    }
+  };
+  using Objective = decltype(objective);
+  opt.set_min_objective(
+      [](const std::vector<double>& u, std::vector<double>&, void* data) {
+        return (*static_cast<Objective*>(data))(u);
+      },
+      &objective);
+  std::vector<double> u(n);
+  for (std::size_t i = 0; i < n; ++i) u[i] = to_unit(i, best_.values[i]);
+  double f = 0;
+  try {
+    opt.optimize(u, f);
+  } catch (const nlopt::forced_stop&) {
+  } catch (const nlopt::roundoff_limited&) {
+  }
+  if (failure) std::rethrow_exception(failure);
+}
+
+void Calibration::finish(bool done) {
+  if (cluster_.rank() != 0) return;
+  write_calibrated_models(out_, plan_, best_);
+  write_report(out_, plan_, history_, sensitivities_, best_, done, elapsed());
+}
+
+int Calibration::run() {
+  if (cluster_.rank() == 0)
+    fmt::print("{}: {} parameters, {} targets, {} tests x {} seeds per evaluation, results in "
+               "{}/\n",
+               plan_.file.string(), plan_.parameters.size(), plan_.targets.size(),
+               plan_.tests.size(), plan_.seeds.size(), out_.string());
+  std::vector<double> start;
+  for (const io::CalibrationParameter& p : plan_.parameters) start.push_back(p.start);
+  const Evaluation first = evaluate({start}, "start").front();
+  for (std::size_t t = 0; t < plan_.targets.size(); ++t)
+    if (!std::isfinite(first.mean[t]) || first.mean[t] == 0)
+      throw TargetError(fmt::format(
+          "{}: the tests give no {} ({}; see {}/runs/e0001/*/log.txt)", plan_.targets[t].origin,
+          plan_.targets[t].quantity,
+          first.failed_runs ? "some runs failed" : "absent or 0", out_.string()));
+  bool dimensional = false;
+  for (const io::CalibrationParameter& p : plan_.parameters) dimensional |= !p.scales.empty();
+  if (!converged(best_) && dimensional && affordable(1))
+    evaluate({dimensional_guess(best_)}, "dimensional");
+  if (!converged(best_) && affordable(plan_.parameters.size() + 1)) {
+    const Evaluation base = best_;
+    const Sensitivity s = sensitivity(base);
+    if (!converged(best_) && affordable(1)) evaluate({linearised_step(base, s)}, "linearised");
+  }
+  if (!converged(best_) && affordable(1)) optimise();
+  // The micro-macro relations at the calibrated point, when the budget allows.
+  if (affordable(plan_.parameters.size())) sensitivity(best_);
+  finish(converged(best_));
+  if (cluster_.rank() == 0)
+    fmt::print("{}: best evaluation {}, worst target {:.2f} tolerances; {} runs, {:.0f} s; "
+               "calibrated_*.toml and report.md in {}/\n",
+               converged(best_) ? "calibrated" : "budget spent before every target was met",
+               best_.index, best_.worst, runs_used_, elapsed(), out_.string());
+  return converged(best_) ? 0 : budget_spent;
+}
+
+}  // namespace
+
+int calibrate(const CalibrateOptions& options) {
+  Cluster cluster;
+  const bool lead = cluster.rank() == 0;
+  if (cluster.launched_without_mpi()) {
+    fmt::print(stderr,
+               "error: started as several MPI ranks, but this vorodec was built without MPI\n");
+    return bad_input;
+  }
+  io::CalibrationPlan plan;
+  try {
+    plan = io::read_calibration_file(options.file);
+  } catch (const io::ModelFileError& e) {
+    if (lead) fmt::print(stderr, "error: {}\n", e.what());
+    return bad_input;
+  }
+  const fs::path out = options.out.empty() ? plan.output : options.out;
+  std::error_code ec;
+  fs::create_directories(out / "runs", ec);
+  if (ec) {
+    fmt::print(stderr, "error: results folder '{}' cannot be created\n", out.string());
+    cluster.abort(bad_input);
+  }
+  int jobs = options.jobs;
+  if (jobs <= 0)
+    jobs =
+        cluster.size() > 1 ? 1 : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  try {
+    return Calibration(std::move(plan), out, jobs, cluster).run();
+  } catch (const TargetError& e) {
+    if (lead) fmt::print(stderr, "error: {}\n", e.what());
+    return bad_input;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    cluster.abort(1);
+  }
+}
+
+}  // namespace vorodec::app
