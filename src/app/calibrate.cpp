@@ -308,9 +308,19 @@ void Calibration::optimise() {
   nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));
   opt.set_lower_bounds(std::vector<double>(n, 0.0));
   opt.set_upper_bounds(std::vector<double>(n, 1.0));
-  // Steps below this move the targets less than the seed scatter: the search is done.
-  opt.set_xtol_abs(1e-3);
-  opt.set_initial_step(0.05);
+  // First steps that move the most sensitive target by about one tolerance (BOBYQA rescales
+  // each coordinate by its step); steps 20 times smaller end the search.
+  std::vector<double> step(n, 0.05);
+  if (!sensitivities_.empty())
+    for (std::size_t j = 0; j < n; ++j) {
+      double largest = 0;
+      for (std::size_t i = 0; i < plan_.targets.size(); ++i)
+        largest = std::max(largest, std::abs(sensitivities_.back().jacobian[i * n + j]));
+      if (largest > 0) step[j] = std::clamp(1.0 / largest, 1e-4, 0.05);
+    }
+  opt.set_initial_step(step);
+  for (double& d : step) d /= 20;
+  opt.set_xtol_abs(step);
   std::exception_ptr failure;
   auto objective = [&](const std::vector<double>& u) {
     std::vector<double> v(n);
@@ -400,6 +410,13 @@ int calibrate(const CalibrateOptions& options) {
   } catch (const io::ModelFileError& e) {
     if (lead) fmt::print(stderr, "error: {}\n", e.what());
     return bad_input;
+  }
+  if (options.check) {
+    if (lead)
+      fmt::print("{}: ok ({} parameters, {} targets, {} runs per evaluation)\n",
+                 options.file.string(), plan.parameters.size(), plan.targets.size(),
+                 plan.tests.size() * plan.seeds.size());
+    return 0;
   }
   const fs::path out = options.out.empty() ? plan.output : options.out;
   std::error_code ec;

@@ -62,6 +62,11 @@ void write_history(const fs::path& out, const io::CalibrationPlan& plan,
     s += '\n';
   }
   io::write_file_atomically(out / "history.csv", s);
+  std::string t = "target,quantity,value,tolerance,absolute,weight\n";
+  for (const io::CalibrationTarget& g : plan.targets)
+    t += fmt::format("{},{},{},{},{},{}\n", g.name, g.quantity, number(g.value),
+                     number(g.tolerance), g.absolute ? 1 : 0, number(g.weight));
+  io::write_file_atomically(out / "targets.csv", t);
 }
 
 void write_sensitivity(const fs::path& out, const io::CalibrationPlan& plan,

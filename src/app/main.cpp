@@ -158,6 +158,8 @@ int main(int argc, char** argv) {
       ->add_option("--jobs", calibrate_options.jobs,
                    "runs at a time (default: all cores; 1 per MPI rank)")
       ->check(CLI::PositiveNumber);
+  calibrate->add_flag("--check", calibrate_options.check,
+                      "validate the file and its parameter bounds against the models, run nothing");
 
   try {
     cli.parse(argc, argv);

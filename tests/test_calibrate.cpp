@@ -1,0 +1,155 @@
+// `vorodec calibrate`: from targets back to the parameters that produced them; a calibration run
+// again replays its runs; bad calibration input exits 2 with file, key and line.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "run_support.hpp"
+
+using vorodec::testing::json_number;
+using vorodec::testing::out_dir;
+using vorodec::testing::run_capture;
+using vorodec::testing::run_vorodec;
+using vorodec::testing::slurp;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kModel = std::string(VORODEC_SOURCE_DIR) + "/tests/models/e2e_small.toml";
+
+// The planted parameters: jkn and the cohesion; jks and the tension follow by fixed ratios.
+constexpr double kJkn = 1.8e13, kCohesion = 24e6;
+constexpr const char* kTies =
+    "[tie]\n\"joints.jks\" = \"0.40556 * joints.jkn\"\n"
+    "\"joints.tension.mean\" = \"0.58333 * joints.cohesion.mean\"\n";
+
+// A calibration of the small UCS model: jkn and the cohesion from E and the UCS, seeds 11 and 12.
+std::string calibration(double e_target, double ucs_target, const std::string& extra = "") {
+  return fmt::format(
+      "title = \"planted\"\nseeds = [11, 12]\n[budget]\nruns = 60\nwall_time = 600\n"
+      "[[test]]\nname = \"ucs\"\nmodel = \"{}\"\n"
+      "[[parameter]]\nkey = \"joints.jkn\"\nmin = 5e12\nmax = 1e14\nstart = {}\nscale = "
+      "\"log\"\nscales = [\"E\"]\n"
+      "[[parameter]]\nkey = \"joints.cohesion.mean\"\nmin = 5e6\nmax = 1e8\nstart = {}\nscale = "
+      "\"log\"\nscales = [\"UCS\"]\n{}"
+      "[[target]]\nname = \"E\"\ntest = \"ucs\"\nquantity = \"youngs_modulus_Pa\"\nvalue = {}\n"
+      "tolerance = 0.01\n"
+      "[[target]]\nname = \"UCS\"\ntest = \"ucs\"\nquantity = \"peak_stress_Pa\"\nvalue = {}\n"
+      "tolerance = 0.01\n{}",
+      kModel, 2 * kJkn, kCohesion / 2, kTies, e_target, ucs_target, extra);
+}
+
+fs::path write(const fs::path& dir, const std::string& name, const std::string& text) {
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+// The value the calibrated model file gives `key` (a line "key = value  # ...").
+double calibrated(const fs::path& file, const std::string& key) {
+  std::istringstream in(slurp(file));
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(key + " = ", 0) == 0) return std::stod(line.substr(key.size() + 3));
+  return std::nan("");
+}
+
+}  // namespace
+
+TEST(Calibrate, RecoversPlantedParametersFromAWrongStartAndReplaysOnRerun) {
+  const fs::path dir = out_dir("calibrate_planted");
+  // The targets: what the planted parameters give, mean over the two seeds.
+  double e = 0, ucs = 0;
+  for (const int seed : {11, 12}) {
+    const fs::path run = dir / fmt::format("planted_{}", seed);
+    ASSERT_EQ(run_vorodec(fmt::format(
+                  "run {} --no-vtk --threads 1 --out {} --set seed={} --set joints.jkn={} "
+                  "--set joints.jks={} --set joints.cohesion.mean={} --set "
+                  "joints.tension.mean={}",
+                  kModel, run.string(), seed, kJkn, 0.40556 * kJkn, kCohesion,
+                  0.58333 * kCohesion)),
+              0);
+    const std::string summary = slurp(run / "summary.json");
+    e += json_number(summary, "youngs_modulus_Pa") / 2;
+    ucs += json_number(summary, "peak_stress_Pa") / 2;
+  }
+  const fs::path file = write(dir, "planted.toml", calibration(e, ucs));
+  const fs::path out = dir / "calibration";
+  const auto first = run_capture(fmt::format("calibrate {} --out {}", file.string(), out.string()));
+  ASSERT_EQ(first.code, 0) << first.output;
+  const fs::path model = out / "calibrated_e2e_small.toml";
+  // Targets within 1 % pin jkn (E ~ jkn) and the cohesion (UCS ~ strength) within about 1 %,
+  // plus the two's cross-effects (d ln UCS / d ln jkn = -0.1).
+  EXPECT_NEAR(calibrated(model, "joints.jkn") / kJkn, 1.0, 0.03) << slurp(model);
+  EXPECT_NEAR(calibrated(model, "joints.cohesion.mean") / kCohesion, 1.0, 0.03) << slurp(model);
+  EXPECT_NEAR(calibrated(model, "joints.jks") / calibrated(model, "joints.jkn"), 0.40556, 1e-9);
+  const std::string report = slurp(out / "report.md");
+  EXPECT_NE(report.find("every target within its tolerance"), std::string::npos) << report;
+  EXPECT_EQ(run_vorodec("check " + model.string()), 0);  // a model file as any other
+
+  // Run again: every run is kept, the search takes the same path to the same parameters.
+  const std::string before = slurp(model);
+  const auto again = run_capture(fmt::format("calibrate {} --out {}", file.string(), out.string()));
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_EQ(again.output.find(": exit "), std::string::npos) << "a run ran again:\n"
+                                                              << again.output;
+  EXPECT_EQ(slurp(model), before);
+}
+
+TEST(Calibrate, TargetNoTestProducesExitsTwoNamingTheTarget) {
+  const fs::path dir = out_dir("calibrate_no_tension");
+  const std::string extra =
+      "[[target]]\nname = \"tension\"\ntest = \"ucs\"\nquantity = \"tensile_strength_Pa\"\n"
+      "value = 10e6\ntolerance = 0.05\n";
+  const fs::path file = write(dir, "c.toml", calibration(3e10, 6e7, extra));
+  const auto o = run_capture(
+      fmt::format("calibrate {} --out {}", file.string(), (dir / "out").string()));
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find("c.toml:38: target 'tension'"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("tensile_strength_Pa"), std::string::npos) << o.output;
+}
+
+// Each bad file: texts replaced in a good calibration, and what the message must name.
+struct BadCalibration {
+  std::string from, to, expected, from2 = "", to2 = "";
+};
+
+class CalibrateBadInput : public ::testing::TestWithParam<BadCalibration> {};
+
+TEST_P(CalibrateBadInput, ExitsTwoWithFileKeyAndLine) {
+  const BadCalibration& bad = GetParam();
+  std::string text = calibration(3e10, 6e7);
+  const auto at = text.find(bad.from);
+  ASSERT_NE(at, std::string::npos) << bad.from;
+  text.replace(at, bad.from.size(), bad.to);
+  if (!bad.from2.empty()) text.replace(text.find(bad.from2), bad.from2.size(), bad.to2);
+  const fs::path dir = out_dir("calibrate_bad");
+  const fs::path file = write(dir, "bad.toml", text);
+  const auto o = run_capture("calibrate " + file.string() + " --check");
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find(bad.expected), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir / "runs"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CalibrateBadInput,
+    ::testing::Values(
+        BadCalibration{"title = ", "titel = ", "bad.toml:1: key 'titel': unknown key"},
+        BadCalibration{"min = 5e12\nmax = 1e14", "min = 1e14\nmax = 5e12",
+                       "bad.toml:12: key 'parameter[0].max': bounds reversed"},
+        BadCalibration{"key = \"joints.jkn\"\nmin = 5e12", "key = \"joints.jkn\"\nmin = -5e12",
+                       "key 'parameter[0].min': joints.jkn = -5000000000000: test 'ucs' "
+                       "refuses it: must be > 0 Pa/m",
+                       "scale = \"log\"\nscales = [\"E\"]", "scale = \"linear\"\nscales = [\"E\"]"},
+        BadCalibration{"quantity = \"peak_stress_Pa\"", "quantity = \"peak_strength\"",
+                       "key 'target[1].quantity': 'peak_strength' is not produced by any test"},
+        BadCalibration{"seeds = [11, 12]", "seeds = []", "bad.toml:2: key 'seeds'"},
+        BadCalibration{"test = \"ucs\"\nquantity = \"youngs", "test = \"ucss\"\nquantity = \"youngs",
+                       "key 'target[0].test': no [[test]] is named 'ucss'"},
+        BadCalibration{"0.40556 * joints.jkn", "0.40556 * joints.jnk",
+                       "key 'tie.joints.jks': 'joints.jnk' is neither a parameter"},
+        BadCalibration{"runs = 60", "runs = 1",
+                       "key 'budget.runs': 1 runs cannot afford one evaluation"}));
