@@ -1,10 +1,12 @@
 // Runs the verification cases and writes a markdown report.
 // Usage: vorodec_verify <source dir> <vorodec binary> <report.md> [--analytic-only] [--ladders]
 //                       [--grains-only] [--speeds-only] [--creep-only] [--corrosion-only]
-//                       [--marble-only] [--dynamics-only] [--shpb-only]
+//                       [--marble-only] [--dynamics-only] [--shpb-only] [--calibration-only]
 // --ladders adds the whole-model convergence ladders (about 10 minutes on one core).
 // --grains-only runs the grain-based cases only (G1, G2, B5; about 6 minutes on 2 cores).
 // --dynamics-only runs A8, A9, the quiet boundaries and the undamped assembly (about 6 minutes).
+// --calibration-only runs C1, the marble calibration from a wrong start (about an hour on 2 cores;
+// its folder, results/calibrate_marble, replays when run again).
 // --shpb-only runs A12 and the granite under impact (B5 dynamic; about 3 minutes on 2 cores).
 // --marble-only runs the marble's published cases only (B1, B2; about 15 minutes on 2 cores).
 // --speeds-only runs only the quasi-static speed table: fixed against adaptive platen speeds on
@@ -258,13 +260,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
                  "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only] "
-                 "[--corrosion-only] [--marble-only] [--dynamics-only] [--shpb-only]\n",
+                 "[--corrosion-only] [--marble-only] [--dynamics-only] [--shpb-only] "
+                 "[--calibration-only]\n",
                  argv[0]);
     return 2;
   }
   bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false,
        grains_only = false, speeds_only = false, creep_only = false, corrosion_only = false,
-       marble_only = false, dynamics_only = false, shpb_only = false;
+       marble_only = false, dynamics_only = false, shpb_only = false, calibration_only = false;
   // Each flag and the parts it asks for.
   const std::map<std::string, std::vector<bool*>, std::less<>> options{
       {"--analytic-only", {&analytic_only}},
@@ -276,6 +279,7 @@ int main(int argc, char** argv) {
       {"--corrosion-only", {&corrosion_only}},
       {"--dynamics-only", {&dynamics_only}},
       {"--shpb-only", {&shpb_only}},
+      {"--calibration-only", {&calibration_only}},
       {"--marble-only", {&marble_only}}};
   for (int i = 4; i < argc; ++i) {
     const auto option = options.find(std::string_view(argv[i]));
@@ -336,6 +340,18 @@ int main(int argc, char** argv) {
     const int failed =
         write_shpb(out, argv[1], argv[2], std::filesystem::path(argv[3]).parent_path());
     std::fprintf(stderr, "%d checks failed; report: %s\n", failed, argv[3]);
+    return failed ? 1 : 0;
+  }
+  if (calibration_only) {  // C1 (about an hour on 2 cores)
+    std::ofstream out(argv[3]);
+    write_table_head(out, "calibration (C1)", "--calibration-only");
+    int failed = 0;
+    const auto rows = c1_marble_calibration(argv[1], argv[2], "results/calibrate_marble");
+    for (const auto& r : rows) {
+      failed += !r.pass();
+      out << report_row(r);
+    }
+    std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, rows.size(), argv[3]);
     return failed ? 1 : 0;
   }
   if (marble_only) {  // B1 and B2, the marble's published rows (about 15 minutes on 2 cores)

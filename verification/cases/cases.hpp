@@ -75,6 +75,11 @@ CaseResult quiet_row_long_run(long steps);
 
 // Published results: whole model runs (minutes), run by verification/run.sh only.
 std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::string& binary);
+// C1: `vorodec calibrate models/calibrate_marble.toml` into `out` (about an hour on 2 cores; run
+// again on the same folder, it replays): each target at the best evaluation, and the wall time.
+std::vector<CaseResult> c1_marble_calibration(const std::string& source_dir,
+                                              const std::string& binary,
+                                              const std::filesystem::path& out);
 
 // Load paths of the marble study (minutes): the confinement series and its Mohr-Coulomb and
 // Hoek-Brown fits (B1), variable-amplitude cyclic loading (B2), direct tension and Brazilian.
