@@ -119,12 +119,22 @@ class Calibration {
 std::vector<Evaluation> Calibration::evaluate(const std::vector<std::vector<double>>& points,
                                               const std::string& phase) {
   std::vector<io::BatchCase> cases;
-  for (std::size_t k = 0; k < points.size(); ++k)
+  std::size_t repeated = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    // A point evaluated before (BOBYQA starts at the best one) names that evaluation's folder:
+    // its runs are kept, not run again.
+    std::size_t folder = history_.size() + k + 1;
+    for (const Evaluation& e : history_)
+      if (e.values == points[k]) {
+        folder = e.index;
+        ++repeated;
+        break;
+      }
     for (std::size_t t = 0; t < plan_.tests.size(); ++t)
       for (const std::uint64_t seed : plan_.seeds)
-        cases.push_back({fmt::format("e{:04d}/{}_seed{}", history_.size() + k + 1,
-                                     plan_.tests[t].name, seed),
+        cases.push_back({fmt::format("e{:04d}/{}_seed{}", folder, plan_.tests[t].name, seed),
                          plan_.tests[t].model, io::run_overrides(plan_, t, seed, points[k])});
+  }
   std::vector<std::size_t> mine;
   for (std::size_t i = static_cast<std::size_t>(cluster_.rank()); i < cases.size();
        i += static_cast<std::size_t>(cluster_.size()))
@@ -153,7 +163,7 @@ std::vector<Evaluation> Calibration::evaluate(const std::vector<std::vector<doub
       per_case.at(i) = v;  // exit code, wall time, kept, then the quantities
     }
   }
-  runs_used_ += cases.size();
+  runs_used_ += cases.size() - repeated * runs_per_point();
   std::vector<Evaluation> out;
   const std::size_t n = runs_per_point();
   for (std::size_t k = 0; k < points.size(); ++k) {
