@@ -136,7 +136,7 @@ def plot_micro_macro(sens, targets, out):
                 continue
             x = [float(s["parameter_base"]), float(s["parameter_moved"])]
             y = [float(s["target_base"]) * scale, float(s["target_moved"]) * scale]
-            ax.plot(x, y, "o-", label="round %s: slope %+.2f (log-log)" % (s["round"], float(s["elasticity"])))
+            ax.loglog(x, y, "o-", label="round %s: slope %+.2f (log-log)" % (s["round"], float(s["elasticity"])))
         ax.set_xlabel(p, fontsize=8)
         ax.set_ylabel("%s (%s)" % (target, label))
         ax.legend(fontsize=7)
@@ -152,6 +152,7 @@ def main():
     ap.add_argument("-o", "--out", help="folder for the PNGs (default: the results folder)")
     a = ap.parse_args()
     out = a.out or a.folder
+    os.makedirs(out, exist_ok=True)
     history = rows(os.path.join(a.folder, "history.csv"))
     targets = rows(os.path.join(a.folder, "targets.csv"))
     plot_history(history, os.path.join(out, "calibration_history.png"))

@@ -14,6 +14,7 @@
 #include "calibration_report.hpp"
 #include "case_runner.hpp"
 #include "cluster.hpp"
+#include "vorodec/app/simulation.hpp"
 #include "vorodec/io/atomic_file.hpp"
 
 namespace vorodec::app {
@@ -28,6 +29,23 @@ constexpr int bad_input = 2, budget_spent = 5;
 struct TargetError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// A run was stopped by a signal or for resume: its result is unknown, so the search cannot go on
+// the same way; the same command continues.
+struct Interrupted : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The objective BOBYQA sees for a set whose runs failed: large, but finite (an infinite value
+// would corrupt its quadratic model).
+constexpr double kFailedObjective = 1e12;
+
+// A summary.json number; "null", "" or anything not a number is NaN.
+double number_or_nan(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && *end == '\0' ? v : NAN;
+}
 
 // sigma1 = C0 + q sigma3 by least squares, read as Mohr-Coulomb: c (Pa) and phi (deg).
 std::pair<double, double> envelope(const std::vector<double>& s3, const std::vector<double>& s1) {
@@ -58,8 +76,12 @@ class Calibration {
     std::string line;
     std::getline(history, line);
     while (std::getline(history, line)) {
-      const auto a = line.find(','), b = line.find(',', a + 1), c = line.find(',', b + 1);
-      earlier_elapsed_.push_back(std::stod(line.substr(c + 1)));
+      std::istringstream cells(line);
+      std::string cell;
+      for (int k = 0; k < 4; ++k) std::getline(cells, cell, ',');  // the elapsed_s column
+      const double t = number_or_nan(cell);
+      if (!std::isfinite(t)) break;  // a damaged row: replay up to it
+      earlier_elapsed_.push_back(t);
     }
   }
 
@@ -71,11 +93,19 @@ class Calibration {
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
   std::size_t runs_per_point() const { return plan_.tests.size() * plan_.seeds.size(); }
+  // Whether `points` more evaluations fit the budget, their time estimated from the last ones.
+  // Decided on rank 0's clock, shared with every evaluation, so all ranks decide alike.
   bool affordable(std::size_t points) const {
     return runs_used_ + points * runs_per_point() <= static_cast<std::size_t>(plan_.max_runs) &&
-           elapsed() < plan_.max_wall_seconds;
+           shared_seconds_ + static_cast<double>(points) * point_seconds_ <=
+               plan_.max_wall_seconds;
   }
   bool converged(const Evaluation& e) const { return e.worst <= 1.0; }
+  bool same_point(const std::vector<double>& a, const std::vector<double>& b) const {
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (std::abs(to_unit(i, a[i]) - to_unit(i, b[i])) > 1e-12) return false;
+    return true;
+  }
 
   // Parameters <-> the optimiser's coordinates in [0, 1] (log or linear in each parameter).
   double to_unit(std::size_t i, double v) const {
@@ -85,17 +115,17 @@ class Calibration {
   }
   double from_unit(std::size_t i, double u) const {
     const io::CalibrationParameter& p = plan_.parameters[i];
-    u = std::clamp(u, 0.0, 1.0);
+    u = std::isfinite(u) ? std::clamp(u, 0.0, 1.0) : 0.5;
     return p.log_scale ? p.min * std::pow(p.max / p.min, u) : p.min + u * (p.max - p.min);
   }
 
-  std::vector<Evaluation> evaluate(const std::vector<std::vector<double>>& points,
+  std::vector<Evaluation> evaluate(std::vector<std::vector<double>> points,
                                    const std::string& phase);
   Evaluation score(std::vector<double> values, const std::string& phase, std::size_t index,
                    const std::vector<std::vector<double>>& per_case) const;
   void record(Evaluation e);
   std::vector<double> dimensional_guess(const Evaluation& e) const;
-  Sensitivity sensitivity(const Evaluation& base);
+  Sensitivity sensitivity(Evaluation base);
   std::vector<double> linearised_step(const Evaluation& base, const Sensitivity& s) const;
   void optimise();
   void finish(bool done);
@@ -109,6 +139,9 @@ class Calibration {
   double offset_seconds_ = 0;            // s before start_ (replayed evaluations)
   std::vector<double> earlier_elapsed_;  // s, per evaluation of an earlier invocation
   std::size_t runs_used_ = 0;
+  double shared_seconds_ = 0;  // s, rank 0's elapsed() after the last evaluation
+  double point_seconds_ = 0;   // s per point of the last evaluation
+  bool search_ended_ = false;  // BOBYQA stopped on its own (steps below its tolerance)
   std::vector<Evaluation> history_;
   std::vector<Sensitivity> sensitivities_;
   Evaluation best_;
@@ -116,7 +149,7 @@ class Calibration {
 
 // Runs every point's tests x seeds as one list of cases, dealt to the MPI ranks; every rank
 // receives every result, so all take the same next step.
-std::vector<Evaluation> Calibration::evaluate(const std::vector<std::vector<double>>& points,
+std::vector<Evaluation> Calibration::evaluate(std::vector<std::vector<double>> points,
                                               const std::string& phase) {
   std::vector<io::BatchCase> cases;
   std::size_t repeated = 0;
@@ -125,7 +158,8 @@ std::vector<Evaluation> Calibration::evaluate(const std::vector<std::vector<doub
     // its runs are kept, not run again.
     std::size_t folder = history_.size() + k + 1;
     for (const Evaluation& e : history_)
-      if (e.values == points[k]) {
+      if (same_point(e.values, points[k])) {
+        points[k] = e.values;  // its exact values: the same runs, kept
         folder = e.index;
         ++repeated;
         break;
@@ -140,6 +174,7 @@ std::vector<Evaluation> Calibration::evaluate(const std::vector<std::vector<doub
        i += static_cast<std::size_t>(cluster_.size()))
     mine.push_back(i);
   const std::string who = cluster_.size() > 1 ? fmt::format("rank {}: ", cluster_.rank()) : "";
+  const double before = shared_seconds_;
   std::string rows;
   for (const auto& [i, o] : run_cases(cases, mine, out_ / "runs", {0, false}, jobs_, who)) {
     const std::string summary = read_text(out_ / "runs" / cases[i].name / "summary.json");
@@ -150,25 +185,39 @@ std::vector<Evaluation> Calibration::evaluate(const std::vector<std::vector<doub
     }
     rows += '\n';
   }
+  if (cluster_.rank() == 0) rows += fmt::format("T {:.17g}\n", elapsed());
   std::vector<std::vector<double>> per_case(cases.size());
   for (const std::string& text : cluster_.share(rows)) {
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {
       std::istringstream in(line);
-      std::size_t i = 0;
-      in >> i;
+      std::string first, field;
+      in >> first;
       std::vector<double> v;
-      std::string field;
-      while (in >> field) v.push_back(field == "nan" ? NAN : std::stod(field));
-      per_case.at(i) = v;  // exit code, wall time, kept, then the quantities
+      while (in >> field) v.push_back(number_or_nan(field));
+      if (first == "T")
+        shared_seconds_ = v.at(0);
+      else
+        per_case.at(std::stoul(first)) = v;  // exit code, wall time, kept, then the quantities
     }
   }
-  runs_used_ += cases.size() - repeated * runs_per_point();
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const int code = static_cast<int>(per_case[i].at(0));
+    if (code == kStoppedForResume || code >= 128)
+      throw Interrupted(fmt::format("run {} was stopped (exit {}): run the same command again to "
+                                    "continue the calibration",
+                                    cases[i].name, code));
+  }
+  point_seconds_ = std::max(0.0, shared_seconds_ - before) / static_cast<double>(points.size());
   std::vector<Evaluation> out;
   const std::size_t n = runs_per_point();
   for (std::size_t k = 0; k < points.size(); ++k) {
     const std::vector<std::vector<double>> mine_k(per_case.begin() + static_cast<long>(k * n),
                                                   per_case.begin() + static_cast<long>(k * n + n));
+    const bool repeat = std::any_of(history_.begin(), history_.end(), [&](const Evaluation& e) {
+      return same_point(e.values, points[k]);
+    });
+    if (!repeat) runs_used_ += n;
     out.push_back(score(points[k], phase, history_.size() + 1, mine_k));
     const bool replayed = std::all_of(mine_k.begin(), mine_k.end(),
                                       [](const std::vector<double>& c) { return c[2] == 1; });
@@ -191,13 +240,16 @@ Evaluation Calibration::score(std::vector<double> values, const std::string& pha
   e.values = std::move(values);
   e.runs = runs_used_;
   const std::size_t seeds = plan_.seeds.size();
+  // A run that did not finish (unstable, step limit) gives no numbers.
   auto quantity = [&](std::size_t test, std::size_t seed, const std::string& q) {
     const std::vector<double>& c = per_case[test * seeds + seed];
     const auto at = std::find(quantities_.begin(), quantities_.end(), q) - quantities_.begin();
-    if (c[0] != 0) e.failed_runs++;
-    return c[3 + static_cast<std::size_t>(at)];
+    return c[0] != 0 ? NAN : c[3 + static_cast<std::size_t>(at)];
   };
-  for (const std::vector<double>& c : per_case) e.wall_seconds = std::max(e.wall_seconds, c[1]);
+  for (const std::vector<double>& c : per_case) {
+    e.wall_seconds = std::max(e.wall_seconds, c[1]);
+    e.failed_runs += c[0] != 0;
+  }
   double sum = 0, weights = 0;
   for (const io::CalibrationTarget& t : plan_.targets) {
     std::vector<double> samples;
@@ -261,7 +313,7 @@ std::vector<double> Calibration::dimensional_guess(const Evaluation& e) const {
 
 // One step of each parameter (x (1 + step) on a log scale, + step x range on a linear one,
 // backwards at the upper bound), all run at once.
-Sensitivity Calibration::sensitivity(const Evaluation& base) {
+Sensitivity Calibration::sensitivity(Evaluation base) {
   Sensitivity s;
   s.base = base.index;
   std::vector<std::vector<double>> points;
@@ -270,7 +322,7 @@ Sensitivity Calibration::sensitivity(const Evaluation& base) {
     std::vector<double> v = base.values;
     const double up = p.log_scale ? v[i] * (1 + plan_.step) : v[i] + plan_.step * (p.max - p.min);
     const double down = p.log_scale ? v[i] / (1 + plan_.step) : v[i] - plan_.step * (p.max - p.min);
-    v[i] = up <= p.max ? up : down;
+    v[i] = up <= p.max ? up : std::max(down, p.min);
     points.push_back(v);
   }
   const std::vector<Evaluation> moved = evaluate(points, "sensitivity");
@@ -282,7 +334,9 @@ Sensitivity Calibration::sensitivity(const Evaluation& base) {
     const double dlnp = std::log(std::abs(points[j][j] / base.values[j]));
     s.evaluations.push_back(moved[j].index);
     for (std::size_t i = 0; i < m; ++i) {
-      s.jacobian[i * n + j] = (moved[j].scaled_error[i] - base.scaled_error[i]) / du;
+      const double d = (moved[j].scaled_error[i] - base.scaled_error[i]) / du;
+      // A moved set whose runs failed says nothing about this parameter.
+      s.jacobian[i * n + j] = std::isfinite(d) ? d : 0.0;
       // d ln(target) / d ln(parameter): the micro-macro relation near the base point.
       s.elasticity[i * n + j] = std::log(moved[j].mean[i] / base.mean[i]) / dlnp;
     }
@@ -303,6 +357,7 @@ std::vector<double> Calibration::linearised_step(const Evaluation& base,
     r(i) = -w * base.scaled_error[static_cast<std::size_t>(i)];
     for (long j = 0; j < n; ++j) J(i, j) = w * s.jacobian[static_cast<std::size_t>(i * n + j)];
   }
+  if (!r.allFinite()) return base.values;
   const Eigen::VectorXd du = J.completeOrthogonalDecomposition().solve(r);
   std::vector<double> v = base.values;
   for (long j = 0; j < n; ++j) {
@@ -338,7 +393,7 @@ void Calibration::optimise() {
     try {
       const Evaluation e = evaluate({v}, "optimiser").front();
       if (converged(e) || !affordable(1)) opt.force_stop();
-      return e.objective;
+      return std::isfinite(e.objective) ? e.objective : kFailedObjective;
     } catch (...) {
       failure = std::current_exception();
       opt.force_stop();
@@ -355,9 +410,11 @@ void Calibration::optimise() {
   for (std::size_t i = 0; i < n; ++i) u[i] = to_unit(i, best_.values[i]);
   double f = 0;
   try {
-    opt.optimize(u, f);
+    const nlopt::result r = opt.optimize(u, f);
+    search_ended_ = r == nlopt::XTOL_REACHED || r == nlopt::FTOL_REACHED;
   } catch (const nlopt::forced_stop&) {
-  } catch (const nlopt::roundoff_limited&) {
+  } catch (const std::exception& e) {  // NLopt's own failure: keep the best set found so far
+    if (!failure) fmt::print(stderr, "warning: the optimiser stopped: {}\n", e.what());
   }
   if (failure) std::rethrow_exception(failure);
 }
@@ -396,11 +453,13 @@ int Calibration::run() {
   // The micro-macro relations at the calibrated point, when the budget allows.
   if (affordable(plan_.parameters.size())) sensitivity(best_);
   finish(converged(best_));
+  const char* outcome = converged(best_) ? "calibrated"
+                        : search_ended_  ? "the search ended before every target was met"
+                                         : "budget spent before every target was met";
   if (cluster_.rank() == 0)
     fmt::print("{}: best evaluation {}, worst target {:.2f} tolerances; {} runs, {:.0f} s; "
                "calibrated_*.toml and report.md in {}/\n",
-               converged(best_) ? "calibrated" : "budget spent before every target was met",
-               best_.index, best_.worst, runs_used_, elapsed(), out_.string());
+               outcome, best_.index, best_.worst, runs_used_, elapsed(), out_.string());
   return converged(best_) ? 0 : budget_spent;
 }
 
@@ -444,6 +503,9 @@ int calibrate(const CalibrateOptions& options) {
   } catch (const TargetError& e) {
     if (lead) fmt::print(stderr, "error: {}\n", e.what());
     return bad_input;
+  } catch (const Interrupted& e) {
+    if (lead) fmt::print(stderr, "stopped: {}\n", e.what());
+    return kStoppedForResume;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     cluster.abort(1);

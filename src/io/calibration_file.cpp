@@ -40,6 +40,14 @@ bool folder_safe(const std::string& s) {
   });
 }
 
+// Names that go into CSV headers and markdown tables as they are.
+bool column_safe(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) ||
+           std::string_view("_-.[]").find(c) != std::string_view::npos;
+  });
+}
+
 std::string value_text(double v) {
   std::string t = fmt::format("{}", v);
   if (t.find_first_of(".en") == std::string::npos) t += ".0";
@@ -87,6 +95,8 @@ CalibrationParameter read_parameter(TomlSection& sec) {
     sec.fail("key", "give either `key` (a model-file key) or `name` (a free parameter for ties)");
   p.model_key = sec.has("key");
   p.name = sec.string(p.model_key ? "key" : "name", nullptr);
+  if (!column_safe(p.name))
+    sec.fail(p.model_key ? "key" : "name", "letters, digits and _ - . [ ] only");
   const std::string linear = "linear";
   const std::string scale = sec.string("scale", &linear);
   if (scale != "linear" && scale != "log") sec.fail("scale", "must be \"linear\" or \"log\"");
@@ -106,6 +116,7 @@ CalibrationParameter read_parameter(TomlSection& sec) {
 CalibrationTarget read_target(TomlSection& sec, const std::vector<CalibrationTest>& tests) {
   CalibrationTarget t;
   t.name = sec.string("name", nullptr);
+  if (!folder_safe(t.name)) sec.fail("name", "letters, digits, _ and - only");
   t.origin = fmt::format("{}:{}: target '{}'", sec.file(), sec.line(), t.name);
   t.quantity = sec.string("quantity", nullptr);
   if (t.quantity == "cohesion_Pa")
@@ -228,11 +239,11 @@ CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
     top.fail("step", "the sensitivity step is a fraction of the value in (0, 1)");
   {
     TomlSection budget = top.sub("budget");
+    if (!budget.has("runs")) budget.fail("runs", "required key is missing");
     plan.max_runs = budget.integer("runs", 0, 1);
     plan.max_wall_seconds = budget.positive("wall_time", NAN);
     budget.finish();
   }
-  const toml::node* budget_runs = root.at_path("budget.runs").node();
 
   const toml::node* tests = top.node("test");
   if (!tests || !tests->is_array_of_tables() || tests->as_array()->empty())
@@ -315,7 +326,7 @@ CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
   top.finish();
   const long per_evaluation = static_cast<long>(plan.tests.size() * plan.seeds.size());
   if (plan.max_runs < per_evaluation)
-    top.fail_at(budget_runs, "budget.runs",
+    top.fail_at(root.at_path("budget.runs").node(), "budget.runs",
                 fmt::format("{} runs cannot afford one evaluation ({} tests x {} seeds)",
                             plan.max_runs, plan.tests.size(), plan.seeds.size()));
   check_bounds(plan, parameter_list, name);
