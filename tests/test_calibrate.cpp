@@ -65,13 +65,13 @@ TEST(Calibrate, RecoversPlantedParametersFromAWrongStartAndReplaysOnRerun) {
   double e = 0, ucs = 0;
   for (const int seed : {11, 12}) {
     const fs::path run = dir / fmt::format("planted_{}", seed);
-    ASSERT_EQ(run_vorodec(fmt::format(
-                  "run {} --no-vtk --threads 1 --out {} --set seed={} --set joints.jkn={} "
-                  "--set joints.jks={} --set joints.cohesion.mean={} --set "
-                  "joints.tension.mean={}",
-                  kModel, run.string(), seed, kJkn, 0.40556 * kJkn, kCohesion,
-                  0.58333 * kCohesion)),
-              0);
+    ASSERT_EQ(
+        run_vorodec(fmt::format(
+            "run {} --no-vtk --threads 1 --out {} --set seed={} --set joints.jkn={} "
+            "--set joints.jks={} --set joints.cohesion.mean={} --set "
+            "joints.tension.mean={}",
+            kModel, run.string(), seed, kJkn, 0.40556 * kJkn, kCohesion, 0.58333 * kCohesion)),
+        0);
     const std::string summary = slurp(run / "summary.json");
     e += json_number(summary, "youngs_modulus_Pa") / 2;
     ucs += json_number(summary, "peak_stress_Pa") / 2;
@@ -95,7 +95,7 @@ TEST(Calibrate, RecoversPlantedParametersFromAWrongStartAndReplaysOnRerun) {
   const auto again = run_capture(fmt::format("calibrate {} --out {}", file.string(), out.string()));
   ASSERT_EQ(again.code, 0) << again.output;
   EXPECT_EQ(again.output.find(": exit "), std::string::npos) << "a run ran again:\n"
-                                                              << again.output;
+                                                             << again.output;
   EXPECT_EQ(slurp(model), before);
 }
 
@@ -105,8 +105,8 @@ TEST(Calibrate, TargetNoTestProducesExitsTwoNamingTheTarget) {
       "[[target]]\nname = \"tension\"\ntest = \"ucs\"\nquantity = \"tensile_strength_Pa\"\n"
       "value = 10e6\ntolerance = 0.05\n";
   const fs::path file = write(dir, "c.toml", calibration(3e10, 6e7, extra));
-  const auto o = run_capture(
-      fmt::format("calibrate {} --out {}", file.string(), (dir / "out").string()));
+  const auto o =
+      run_capture(fmt::format("calibrate {} --out {}", file.string(), (dir / "out").string()));
   EXPECT_EQ(o.code, 2) << o.output;
   EXPECT_NE(o.output.find("c.toml:38: target 'tension'"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("tensile_strength_Pa"), std::string::npos) << o.output;
@@ -147,7 +147,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCalibration{"quantity = \"peak_stress_Pa\"", "quantity = \"peak_strength\"",
                        "key 'target[1].quantity': 'peak_strength' is not produced by any test"},
         BadCalibration{"seeds = [11, 12]", "seeds = []", "bad.toml:2: key 'seeds'"},
-        BadCalibration{"test = \"ucs\"\nquantity = \"youngs", "test = \"ucss\"\nquantity = \"youngs",
+        BadCalibration{"test = \"ucs\"\nquantity = \"youngs",
+                       "test = \"ucss\"\nquantity = \"youngs",
                        "key 'target[0].test': no [[test]] is named 'ucss'"},
         BadCalibration{"0.40556 * joints.jkn", "0.40556 * joints.jnk",
                        "key 'tie.joints.jks': 'joints.jnk' is neither a parameter"},

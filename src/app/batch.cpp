@@ -35,7 +35,8 @@ std::string header(const io::BatchPlan& plan) {
          "cracks_shear,wall_time_s\n";
 }
 
-std::string row(const io::BatchPlan& plan, std::size_t i, const CaseOutcome& o, const fs::path& out) {
+std::string row(const io::BatchPlan& plan, std::size_t i, const CaseOutcome& o,
+                const fs::path& out) {
   const io::BatchCase& c = plan.cases[i];
   const std::string summary = read_text(out / c.name / "summary.json");
   const std::string status = summary.empty() ? fmt::format("no summary, see {}/log.txt", c.name)

@@ -97,8 +97,7 @@ class Calibration {
   // Decided on rank 0's clock, shared with every evaluation, so all ranks decide alike.
   bool affordable(std::size_t points) const {
     return runs_used_ + points * runs_per_point() <= static_cast<std::size_t>(plan_.max_runs) &&
-           shared_seconds_ + static_cast<double>(points) * point_seconds_ <=
-               plan_.max_wall_seconds;
+           shared_seconds_ + static_cast<double>(points) * point_seconds_ <= plan_.max_wall_seconds;
   }
   bool converged(const Evaluation& e) const { return e.worst <= 1.0; }
   bool same_point(const std::vector<double>& a, const std::vector<double>& b) const {
@@ -204,9 +203,10 @@ std::vector<Evaluation> Calibration::evaluate(std::vector<std::vector<double>> p
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const int code = static_cast<int>(per_case[i].at(0));
     if (code == kStoppedForResume || code >= 128)
-      throw Interrupted(fmt::format("run {} was stopped (exit {}): run the same command again to "
-                                    "continue the calibration",
-                                    cases[i].name, code));
+      throw Interrupted(
+          fmt::format("run {} was stopped (exit {}): run the same command again to "
+                      "continue the calibration",
+                      cases[i].name, code));
   }
   point_seconds_ = std::max(0.0, shared_seconds_ - before) / static_cast<double>(points.size());
   std::vector<Evaluation> out;
@@ -287,9 +287,10 @@ Evaluation Calibration::score(std::vector<double> values, const std::string& pha
 void Calibration::record(Evaluation e) {
   e.elapsed_seconds = elapsed();
   history_.push_back(e);
-  fmt::print("evaluation {} ({}): objective {:.4g}, worst target {:.2f} tolerances, {} runs, "
-             "{:.0f} s\n",
-             e.index, e.phase, e.objective, e.worst, runs_used_, elapsed());
+  fmt::print(
+      "evaluation {} ({}): objective {:.4g}, worst target {:.2f} tolerances, {} runs, "
+      "{:.0f} s\n",
+      e.index, e.phase, e.objective, e.worst, runs_used_, elapsed());
   std::fflush(stdout);
   if (best_.values.empty() || e.objective < best_.objective) best_ = e;
   if (cluster_.rank() != 0) return;
@@ -305,7 +306,8 @@ std::vector<double> Calibration::dimensional_guess(const Evaluation& e) const {
     if (p.scales.empty()) continue;
     double log_factor = 0;
     for (const std::size_t t : p.scales)
-      log_factor += std::log(plan_.targets[t].value / e.mean[t]) / static_cast<double>(p.scales.size());
+      log_factor +=
+          std::log(plan_.targets[t].value / e.mean[t]) / static_cast<double>(p.scales.size());
     if (std::isfinite(log_factor)) v[i] = std::clamp(v[i] * std::exp(log_factor), p.min, p.max);
   }
   return v;
@@ -401,11 +403,9 @@ void Calibration::optimise() {
     }
   };
   using Objective = decltype(objective);
-  opt.set_min_objective(
-      [](const std::vector<double>& u, std::vector<double>&, void* data) {
-        return (*static_cast<Objective*>(data))(u);
-      },
-      &objective);
+  opt.set_min_objective([](const std::vector<double>& u, std::vector<double>&,
+                           void* data) { return (*static_cast<Objective*>(data))(u); },
+                        &objective);
   std::vector<double> u(n);
   for (std::size_t i = 0; i < n; ++i) u[i] = to_unit(i, best_.values[i]);
   double f = 0;
@@ -427,19 +427,20 @@ void Calibration::finish(bool done) {
 
 int Calibration::run() {
   if (cluster_.rank() == 0)
-    fmt::print("{}: {} parameters, {} targets, {} tests x {} seeds per evaluation, results in "
-               "{}/\n",
-               plan_.file.string(), plan_.parameters.size(), plan_.targets.size(),
-               plan_.tests.size(), plan_.seeds.size(), out_.string());
+    fmt::print(
+        "{}: {} parameters, {} targets, {} tests x {} seeds per evaluation, results in "
+        "{}/\n",
+        plan_.file.string(), plan_.parameters.size(), plan_.targets.size(), plan_.tests.size(),
+        plan_.seeds.size(), out_.string());
   std::vector<double> start;
   for (const io::CalibrationParameter& p : plan_.parameters) start.push_back(p.start);
   const Evaluation first = evaluate({start}, "start").front();
   for (std::size_t t = 0; t < plan_.targets.size(); ++t)
     if (!std::isfinite(first.mean[t]) || first.mean[t] == 0)
-      throw TargetError(fmt::format(
-          "{}: the tests give no {} ({}; see {}/runs/e0001/*/log.txt)", plan_.targets[t].origin,
-          plan_.targets[t].quantity,
-          first.failed_runs ? "some runs failed" : "absent or 0", out_.string()));
+      throw TargetError(fmt::format("{}: the tests give no {} ({}; see {}/runs/e0001/*/log.txt)",
+                                    plan_.targets[t].origin, plan_.targets[t].quantity,
+                                    first.failed_runs ? "some runs failed" : "absent or 0",
+                                    out_.string()));
   bool dimensional = false;
   for (const io::CalibrationParameter& p : plan_.parameters) dimensional |= !p.scales.empty();
   if (!converged(best_) && dimensional && affordable(1))
@@ -457,9 +458,10 @@ int Calibration::run() {
                         : search_ended_  ? "the search ended before every target was met"
                                          : "budget spent before every target was met";
   if (cluster_.rank() == 0)
-    fmt::print("{}: best evaluation {}, worst target {:.2f} tolerances; {} runs, {:.0f} s; "
-               "calibrated_*.toml and report.md in {}/\n",
-               outcome, best_.index, best_.worst, runs_used_, elapsed(), out_.string());
+    fmt::print(
+        "{}: best evaluation {}, worst target {:.2f} tolerances; {} runs, {:.0f} s; "
+        "calibrated_*.toml and report.md in {}/\n",
+        outcome, best_.index, best_.worst, runs_used_, elapsed(), out_.string());
   return converged(best_) ? 0 : budget_spent;
 }
 

@@ -52,9 +52,8 @@ void write_history(const fs::path& out, const io::CalibrationPlan& plan,
     s += fmt::format(",{0}_mean,{0}_sd,{0}_error_over_tolerance", t.name);
   s += '\n';
   for (const Evaluation& e : history) {
-    s += fmt::format("{},{},{},{:.1f},{:.1f},{},{},{}", e.index, e.phase, e.runs,
-                     e.elapsed_seconds, e.wall_seconds, e.failed_runs, number(e.objective),
-                     number(e.worst));
+    s += fmt::format("{},{},{},{:.1f},{:.1f},{},{},{}", e.index, e.phase, e.runs, e.elapsed_seconds,
+                     e.wall_seconds, e.failed_runs, number(e.objective), number(e.worst));
     for (const double v : e.values) s.append(",").append(number(v));
     for (std::size_t t = 0; t < e.mean.size(); ++t)
       s += fmt::format(",{},{},{}", number(e.mean[t]), number(e.scatter[t]),
@@ -107,8 +106,7 @@ void write_calibrated_models(const fs::path& out, const io::CalibrationPlan& pla
                                               : fmt::format("# --set {}={} ({})\n", key, v, why);
     };
     for (std::size_t i = 0; i < plan.parameters.size(); ++i)
-      if (plan.parameters[i].model_key)
-        line(plan.parameters[i].name, best.values[i], "calibrated");
+      if (plan.parameters[i].model_key) line(plan.parameters[i].name, best.values[i], "calibrated");
     for (const io::Tie& tie : plan.ties) line(tie.key, tie_value(tie, best.values), "tied");
     for (std::size_t i = 0; i < plan.parameters.size(); ++i)
       if (!plan.parameters[i].model_key)
@@ -122,8 +120,8 @@ void write_report(const fs::path& out, const io::CalibrationPlan& plan,
                   const std::vector<Evaluation>& history, const std::vector<Sensitivity>& rounds,
                   const Evaluation& best, bool converged, double elapsed_seconds) {
   std::size_t runs = history.empty() ? 0 : history.back().runs;
-  std::string s = fmt::format("# Calibration: {}\n\n", plan.title.empty() ? plan.file.string()
-                                                                           : plan.title);
+  std::string s =
+      fmt::format("# Calibration: {}\n\n", plan.title.empty() ? plan.file.string() : plan.title);
   s += fmt::format(
       "`vorodec calibrate {}`: **{}**. Best: evaluation {} of {}; {} runs ({} tests x {} seeds "
       "per evaluation); {:.0f} s of wall time (budget {} runs, {:.0f} s).\n\n",
@@ -158,7 +156,8 @@ void write_report(const fs::path& out, const io::CalibrationPlan& plan,
         "evaluation {}{}, one parameter moved by {:g} % at a time (sensitivity.csv has every "
         "round).\n\n| target |",
         r.base, r.base == best.index ? " (the calibrated set)" : "", 100 * plan.step);
-    for (const io::CalibrationParameter& p : plan.parameters) s.append(" ").append(p.name).append(" |");
+    for (const io::CalibrationParameter& p : plan.parameters)
+      s.append(" ").append(p.name).append(" |");
     s += "\n|---|";
     for (std::size_t j = 0; j < n; ++j) s += "---|";
     s += '\n';

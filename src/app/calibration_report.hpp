@@ -12,24 +12,24 @@ namespace vorodec::app {
 
 // One parameter set, run as every test x every seed.
 struct Evaluation {
-  std::size_t index = 0;  // 1, 2, ...: its folder runs/e0001
-  std::string phase;      // start, dimensional, sensitivity, linearised, optimiser
-  std::vector<double> values;                      // per parameter
+  std::size_t index = 0;       // 1, 2, ...: its folder runs/e0001
+  std::string phase;           // start, dimensional, sensitivity, linearised, optimiser
+  std::vector<double> values;  // per parameter
   std::vector<double> mean, scatter, scaled_error;  // per target: over the seeds; error/tolerance
-  double objective = INFINITY;  // weighted mean of scaled_error^2
-  double worst = INFINITY;      // largest |scaled_error|: 1 or less when every target is met
-  std::size_t runs = 0;         // runs used up to and including this evaluation
-  double wall_seconds = 0;      // s, its longest run
-  double elapsed_seconds = 0;   // s of the calibration when it ended
-  int failed_runs = 0;          // runs that exited non-zero
+  double objective = INFINITY;                      // weighted mean of scaled_error^2
+  double worst = INFINITY;     // largest |scaled_error|: 1 or less when every target is met
+  std::size_t runs = 0;        // runs used up to and including this evaluation
+  double wall_seconds = 0;     // s, its longest run
+  double elapsed_seconds = 0;  // s of the calibration when it ended
+  int failed_runs = 0;         // runs that exited non-zero
 };
 
 // A one-at-a-time round around one evaluation; matrices are targets x parameters, row-major.
 struct Sensitivity {
-  std::size_t base = 0;                   // evaluation
-  std::vector<std::size_t> evaluations;   // one per parameter
-  std::vector<double> jacobian;           // d(error / tolerance) / d(unit coordinate)
-  std::vector<double> elasticity;         // d ln(target) / d ln(parameter)
+  std::size_t base = 0;                  // evaluation
+  std::vector<std::size_t> evaluations;  // one per parameter
+  std::vector<double> jacobian;          // d(error / tolerance) / d(unit coordinate)
+  std::vector<double> elasticity;        // d ln(target) / d ln(parameter)
 };
 
 void write_history(const std::filesystem::path& out, const io::CalibrationPlan& plan,

@@ -179,16 +179,16 @@ std::map<std::size_t, CaseOutcome> run_cases(const std::vector<io::BatchCase>& c
     const Running r = it->second;
     running.erase(it);
     const std::size_t i = r.i;
-    CaseOutcome o{exit_code_of(status),
-                  r.earlier_seconds +
-                      std::chrono::duration<double>(clock::now() - r.start).count()};
+    CaseOutcome o{
+        exit_code_of(status),
+        r.earlier_seconds + std::chrono::duration<double>(clock::now() - r.start).count()};
     done[i] = o;
     const fs::path dir = out / cases[i].name;
     if (ended_for_good(o.exit_code))
       io::write_file_atomically(dir / kCaseOutcome,
                                 fmt::format("{} {:.17g}\n", o.exit_code, o.wall_seconds));
-    fmt::print("{}case {}/{} {}: exit {} after {:.1f} s\n", who, i + 1, cases.size(),
-               cases[i].name, o.exit_code, o.wall_seconds);
+    fmt::print("{}case {}/{} {}: exit {} after {:.1f} s\n", who, i + 1, cases.size(), cases[i].name,
+               o.exit_code, o.wall_seconds);
     std::fflush(stdout);
   }
   return done;

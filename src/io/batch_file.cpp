@@ -93,15 +93,7 @@ std::string override_value(const BatchCase& c, const std::string& key) {
 }
 
 BatchPlan read_batch_file(const std::filesystem::path& file) {
-  toml::table root;
-  try {
-    root = toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw ModelFileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
-                                     e.source().begin.column, e.description()));
-  } catch (const std::exception& e) {
-    throw ModelFileError(fmt::format("{}: cannot read: {}", file.string(), e.what()));
-  }
+  const toml::table root = parse_toml_file(file);
   const std::string name = file.string();
   BatchPlan plan;
   plan.file = file;

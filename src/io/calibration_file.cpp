@@ -15,18 +15,17 @@ namespace vorodec::io {
 namespace {
 
 // summary.json numbers a target may name (nested ones by their own name).
-const std::vector<std::string> kSummaryQuantities = {
-    "peak_stress_Pa",
-    "youngs_modulus_Pa",
-    "poisson_ratio",
-    "tensile_strength_Pa",
-    "crack_initiation_stress_Pa",
-    "accelerating_crack_growth_stress_Pa",
-    "linear_youngs_modulus_Pa",
-    "failure_rate",
-    "failure_time_s",
-    "tensile",
-    "shear"};
+const std::vector<std::string> kSummaryQuantities = {"peak_stress_Pa",
+                                                     "youngs_modulus_Pa",
+                                                     "poisson_ratio",
+                                                     "tensile_strength_Pa",
+                                                     "crack_initiation_stress_Pa",
+                                                     "accelerating_crack_growth_stress_Pa",
+                                                     "linear_youngs_modulus_Pa",
+                                                     "failure_rate",
+                                                     "failure_time_s",
+                                                     "tensile",
+                                                     "shear"};
 
 std::string trimmed(std::string s) {
   const auto b = s.find_first_not_of(" \t");
@@ -105,8 +104,8 @@ CalibrationParameter read_parameter(TomlSection& sec) {
   p.max = sec.number("max", NAN);
   p.start = sec.number("start", NAN);
   if (!(p.min < p.max))
-    sec.fail("max", fmt::format("bounds reversed or empty: min {} is not below max {}", p.min,
-                                p.max));
+    sec.fail("max",
+             fmt::format("bounds reversed or empty: min {} is not below max {}", p.min, p.max));
   if (p.log_scale && p.min <= 0) sec.fail("min", "a log-scale parameter needs min > 0");
   if (p.start < p.min || p.start > p.max)
     sec.fail("start", fmt::format("{} lies outside [{}, {}]", p.start, p.min, p.max));
@@ -178,9 +177,9 @@ void check_bounds(const CalibrationPlan& plan, const toml::array& list, const st
           read_model_file(plan.tests[t].model, run_overrides(plan, t, plan.seeds.front(), v));
         } catch (const ModelFileError& e) {
           TomlSection sec(*list[i].as_table(), fmt::format("parameter[{}]", i), file);
-          sec.fail(bound, fmt::format("{} = {}: test '{}' refuses it: {}", plan.parameters[i].name,
-                                      v[i], plan.tests[t].name,
-                                      e.reason().empty() ? e.what() : e.reason()));
+          sec.fail(bound,
+                   fmt::format("{} = {}: test '{}' refuses it: {}", plan.parameters[i].name, v[i],
+                               plan.tests[t].name, e.reason().empty() ? e.what() : e.reason()));
         }
       }
     }
@@ -206,15 +205,7 @@ std::vector<Override> run_overrides(const CalibrationPlan& plan, std::size_t tes
 }
 
 CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
-  toml::table root;
-  try {
-    root = toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw ModelFileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
-                                     e.source().begin.column, e.description()));
-  } catch (const std::exception& e) {
-    throw ModelFileError(fmt::format("{}: cannot read: {}", file.string(), e.what()));
-  }
+  const toml::table root = parse_toml_file(file);
   const std::string name = file.string();
   CalibrationPlan plan;
   plan.file = file;

@@ -586,17 +586,6 @@ void read_stages(TomlSection sec, std::size_t index, std::vector<loading::Stage>
   stages.push_back(st);
 }
 
-toml::table parse(const std::filesystem::path& file) {
-  try {
-    return toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw ModelFileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
-                                     e.source().begin.column, e.description()));
-  } catch (const std::exception& e) {
-    throw ModelFileError(fmt::format("{}: cannot read: {}", file.string(), e.what()));
-  }
-}
-
 // Tables merge key by key; any other value (arrays such as [[stage]] included) replaces. The
 // nodes of `over` are moved, not copied: a copied toml++ node loses its file and line.
 void merge_into(toml::table& base, toml::table&& over) {
@@ -612,7 +601,7 @@ void merge_into(toml::table& base, toml::table&& over) {
 // A model file may start from another: `base = "file.toml"` (relative to it). Keys it sets win.
 toml::table load(const std::filesystem::path& file, int depth,
                  std::vector<std::filesystem::path>& sources) {
-  toml::table t = parse(file);
+  toml::table t = parse_toml_file(file);
   sources.push_back(file);
   const toml::node* b = t.get("base");
   if (!b) return t;

@@ -8,6 +8,17 @@
 
 namespace vorodec::io {
 
+toml::table parse_toml_file(const std::filesystem::path& file) {
+  try {
+    return toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw ModelFileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
+                                     e.source().begin.column, e.description()));
+  } catch (const std::exception& e) {
+    throw ModelFileError(fmt::format("{}: cannot read: {}", file.string(), e.what()));
+  }
+}
+
 namespace {
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);

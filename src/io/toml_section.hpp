@@ -3,6 +3,7 @@
 // (a misspelled key) is reported with its line. Every error names file, key and line.
 #include <toml++/toml.h>
 
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <string>
@@ -11,6 +12,9 @@
 #include "vorodec/io/model_file.hpp"
 
 namespace vorodec::io {
+
+// A TOML file parsed; a syntax error or an unreadable file throws ModelFileError with file:line.
+toml::table parse_toml_file(const std::filesystem::path& file);
 
 class TomlSection {
  public:

@@ -27,8 +27,8 @@ std::vector<CaseResult> c1_marble_calibration(const std::string& source_dir,
   const Table targets = read_table(out / "targets.csv");
   std::vector<CaseResult> rows;
   if (history.rows.empty() || targets.rows.empty()) {
-    rows.push_back({"C1", fmt::format("marble calibration (exit {}; see {}/log.txt)", code,
-                                      out.string()),
+    rows.push_back({"C1",
+                    fmt::format("marble calibration (exit {}; see {}/log.txt)", code, out.string()),
                     "-", 1, NAN, INFINITY, 0, "", 0});
     return rows;
   }

@@ -56,7 +56,7 @@ struct CalibrationPlan {
   std::string title;
   std::filesystem::path output;  // relative to the working directory
   std::vector<std::uint64_t> seeds;
-  long max_runs = 0;           // model runs, the sensitivity round included
+  long max_runs = 0;            // model runs, the sensitivity round included
   double max_wall_seconds = 0;  // s
   double step = 0.1;            // the sensitivity round's relative step (log scale: ln(1.1))
   std::vector<CalibrationTest> tests;
