@@ -57,7 +57,7 @@ namespace {
 
 std::filesystem::path read_model(TomlSection& sec, const std::filesystem::path& batch_file) {
   std::filesystem::path p = sec.string("model", nullptr);
-  if (p.is_relative()) p = batch_file.parent_path() / p;
+  if (p.is_relative()) p = (batch_file.parent_path() / p).lexically_normal();
   if (!std::filesystem::is_regular_file(p))
     sec.fail("model", fmt::format("model file '{}' does not exist", p.string()));
   return p;

@@ -208,7 +208,7 @@ CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
   const toml::table root = parse_toml_file(file);
   const std::string name = file.string();
   CalibrationPlan plan;
-  plan.file = file;
+  plan.file = file.lexically_normal();  // the same file however it is spelled
   TomlSection top(root, "", name);
   const std::string empty;
   plan.title = top.string("title", &empty);
@@ -247,7 +247,7 @@ CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
     for (const CalibrationTest& u : plan.tests)
       if (u.name == t.name) sec.fail("name", fmt::format("two tests are named '{}'", t.name));
     t.model = sec.string("model", nullptr);
-    if (t.model.is_relative()) t.model = file.parent_path() / t.model;
+    if (t.model.is_relative()) t.model = (file.parent_path() / t.model).lexically_normal();
     if (!std::filesystem::is_regular_file(t.model))
       sec.fail("model", fmt::format("model file '{}' does not exist", t.model.string()));
     t.overrides = read_set(sec);
