@@ -274,6 +274,29 @@ TEST(Deformable, RunIsThreadInvariantAndWritesZones) {
   fs::remove_all(t::base_dir());
 }
 
+TEST(Deformable, ParallelPartsGiveTheSameCracksAndStressesForAnyThreadCount) {
+  namespace t = vorodec::testing;
+  const std::string model = std::string(VORODEC_SOURCE_DIR) + "/tests/models/deformable_small.toml";
+  const auto one = t::out_dir("deformable_parallel_1"), three = t::out_dir("deformable_parallel_3");
+  // 302 blocks, 3,982 zones and 2,183 contacts: past every loop's threshold for thread parts
+  // (contacts, zones, gridpoints, blocks); weak joints, so that cracks start within the run.
+  const std::string args =
+      "run " + model +
+      " --max-steps 1500 --no-vtk --set specimen.block_count=300 --set blocks.zone_size=1e-3 "
+      "--set joints.tension=2e6 --set joints.cohesion=4e6 --out ";
+  ASSERT_EQ(t::run_vorodec(args + one.string() + " --threads 1"), 0);
+  ASSERT_EQ(t::run_vorodec(args + three.string() + " --threads 3"), 0);
+  const auto a = t::read_csv(one / "history.csv"), b = t::read_csv(three / "history.csv");
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.back()[6] + a.back()[7], 50);  // cracks_tensile + cracks_shear
+  // Kinematics, stress and cracks (columns 0-10) and the zones' mean stress (17-19), bit for bit;
+  // the energies are sums over thread parts.
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (const std::size_t c : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 18, 19})
+      ASSERT_EQ(a[i][c], b[i][c]) << "row " << i << " column " << c;
+  EXPECT_GT(t::json_number(t::slurp(one / "summary.json"), "initial_contacts"), 1024);
+}
+
 TEST(Deformable, CornerArcsMatchRigidBlockRounding) {
   // The trigonometry-free arcs of deformable blocks equal the rigid builder's at real corners;
   // at gridpoints along an edge the arc is tangent to the edge at the gridpoint.

@@ -108,53 +108,73 @@ class LawGroupOf final : public LawGroup {
 
   // Contacts with a deformable side (PHYSICS 7): the corner side moves with its gridpoint, the
   // edge side with its two gridpoints interpolated at the contact point, and their force goes to
-  // the same gridpoints with the same weights. Serial: few contacts sit on block boundaries.
+  // the same gridpoints with the same weights. Two passes, so that every gridpoint and block sum
+  // adds its forces in contact order whatever the thread count: the laws in parallel parts, then
+  // the forces and dissipation added in order (a few additions per contact).
   void step_deformable(StepContext& ctx, std::size_t begin, std::size_t end) override {
+    const int chunks = ctx.chunks;
+    outcomes_.resize(end - begin);
+#pragma omp parallel num_threads(chunks) if (end - begin >= deformable_parallel_from)
+    for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
+      model::Blocks& bl = *ctx.blocks;
+      const model::Zoning& z = *ctx.zoning;
+      const Loop loop = loop_constants(ctx);
+      auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
+      const auto [lo, hi] = chunk_range(begin, end, t, chunks);
+      for (std::size_t i = lo; i < hi; ++i) {
+        model::Contact& c = ctx.contacts[i];
+        const model::ContactFrame f = model::contact_frame(bl, c);
+        const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+        DeformableOutcome& o = outcomes_[i - begin];
+        o.pa = model::corner_point(bl, z, a, c.corner);
+        o.pb = model::edge_point(bl, z, b, c.edge, f.point);
+        o.point = f.point;
+        const model::Point va = model::velocity_at(bl, z, a, o.pa, f.point);
+        const model::Point vb = model::velocity_at(bl, z, b, o.pb, f.point);
+        // Gridpoint corners: the increment from the gridpoints' velocities, force at the point.
+        const double du_s = ((va.x - vb.x) * -f.n.y + (va.y - vb.y) * f.n.x) * loop.dt;
+        o.slip = o.breakage = o.dashpots = 0.0;
+        o.force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f, du_s, 1.0,
+                         cracks, o.slip, o.breakage, o.dashpots);
+      }
+    }
     model::Blocks& bl = *ctx.blocks;
     model::Zoning& z = *ctx.zoning;
-    const Loop loop = loop_constants(ctx);
     double slip = 0.0, breakage = 0.0, dashpots = 0.0;
-    auto& cracks = (*ctx.cracks_per_chunk)[0];
     for (std::size_t i = begin; i < end; ++i) {
-      model::Contact& c = ctx.contacts[i];
-      const model::ContactFrame f = model::contact_frame(bl, c);
-      const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-      const model::BodyPoint pa = model::corner_point(bl, z, a, c.corner);
-      const model::BodyPoint pb = model::edge_point(bl, z, b, c.edge, f.point);
-      const model::Point va = model::velocity_at(bl, z, a, pa, f.point);
-      const model::Point vb = model::velocity_at(bl, z, b, pb, f.point);
-      // Gridpoint corners: the increment from the gridpoints' velocities, force at the point.
-      const double du_s = ((va.x - vb.x) * -f.n.y + (va.y - vb.y) * f.n.x) * loop.dt;
-      const model::Point force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f,
-                                        du_s, 1.0, cracks, slip, breakage, dashpots);
+      const DeformableOutcome& o = outcomes_[i - begin];
+      const model::Contact& c = ctx.contacts[i];
       const std::uint8_t shared = ctx.shared_sides[i];
       const auto apply = [&](std::size_t blk, const model::BodyPoint& p, double sign, bool on_b) {
         if (p.g0 >= 0) {
           const auto g0 = static_cast<std::size_t>(p.g0);
-          z.cfx[g0] += sign * (1.0 - p.w1) * force.x;
-          z.cfy[g0] += sign * (1.0 - p.w1) * force.y;
+          z.cfx[g0] += sign * (1.0 - p.w1) * o.force.x;
+          z.cfy[g0] += sign * (1.0 - p.w1) * o.force.y;
           if (p.g1 >= 0) {
             const auto g1 = static_cast<std::size_t>(p.g1);
-            z.cfx[g1] += sign * p.w1 * force.x;
-            z.cfy[g1] += sign * p.w1 * force.y;
+            z.cfx[g1] += sign * p.w1 * o.force.x;
+            z.cfy[g1] += sign * p.w1 * o.force.y;
           }
           return;
         }
         const model::BlockKinematics& k = bl.kin[blk];
-        const double m = (f.point.x - k.x) * force.y - (f.point.y - k.y) * force.x;
+        const double m = (o.point.x - k.x) * o.force.y - (o.point.y - k.y) * o.force.x;
         if (shared & (on_b ? b_shared : a_shared)) {
           model::ContactForce& rec = ctx.forces[i];
-          rec.fx = force.x;
-          rec.fy = force.y;
+          rec.fx = o.force.x;
+          rec.fy = o.force.y;
           (on_b ? rec.mb : rec.ma) = m;
         } else {
-          ctx.sums[blk].fx += sign * force.x;
-          ctx.sums[blk].fy += sign * force.y;
+          ctx.sums[blk].fx += sign * o.force.x;
+          ctx.sums[blk].fy += sign * o.force.y;
           ctx.sums[blk].m += sign * m;
         }
       };
-      apply(a, pa, 1.0, false);
-      apply(b, pb, -1.0, true);
+      apply(static_cast<std::size_t>(c.a), o.pa, 1.0, false);
+      apply(static_cast<std::size_t>(c.b), o.pb, -1.0, true);
+      slip += o.slip;
+      breakage += o.breakage;
+      dashpots += o.dashpots;
     }
     ctx.totals.dissipated_slip += slip;
     ctx.totals.dissipated_breakage += breakage;
@@ -163,7 +183,9 @@ class LawGroupOf final : public LawGroup {
 
  private:
   // A viscous law's evaluate also returns its dashpots' work of the step.
-  static constexpr bool is_viscous = requires { Law::viscous; };
+  static constexpr bool is_viscous = requires {
+    Law::viscous;
+  };
   static double energy(const typename Law::Props& p, [[maybe_unused]] const typename Law::State& st,
                        double fn, double fs) {
     if constexpr (is_viscous)
@@ -175,6 +197,8 @@ class LawGroupOf final : public LawGroup {
   // From this many contacts the corner records outgrow the L2 cache and prefetching pays (1e4
   // blocks: -14 % per step); below it, it only adds instructions (+8 % in the default model).
   static constexpr std::size_t prefetch_from = 16384, prefetch_ahead = 8;
+  // From this many deformable contacts a step's laws run in parallel parts.
+  static constexpr std::size_t deformable_parallel_from = 1024;
   // Below prefetch_from, contacts whose frames are computed ahead of their laws.
   static constexpr std::ptrdiff_t batch = 32;
 
@@ -375,6 +399,14 @@ class LawGroupOf final : public LawGroup {
   std::vector<typename Law::Props> props_;
   std::vector<typename Law::State> state_;
   std::vector<double> dashpot_parts_;  // per thread part, summed in part order
+
+  // What step_deformable's first pass leaves for its second, per contact of the step's range.
+  struct DeformableOutcome {
+    model::BodyPoint pa, pb;  // where the force goes on a and on b
+    model::Point force, point;
+    double slip, breakage, dashpots;  // J per m dissipated
+  };
+  std::vector<DeformableOutcome> outcomes_;
 };
 
 }  // namespace vorodec::laws
