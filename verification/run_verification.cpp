@@ -2,12 +2,16 @@
 // Usage: vorodec_verify <source dir> <vorodec binary> <report.md> [--analytic-only] [--ladders]
 //                       [--grains-only] [--speeds-only] [--creep-only] [--corrosion-only]
 //                       [--marble-only] [--dynamics-only] [--shpb-only] [--calibration-only]
+//                       [--deformable-marble-only] [--stability-only]
 // --ladders adds the whole-model convergence ladders (about 10 minutes on one core).
 // --grains-only runs the grain-based cases only (G1, G2, B5; about 6 minutes on 2 cores).
 // --dynamics-only runs A8, A9, the quiet boundaries and the undamped assembly (about 6 minutes).
 // --calibration-only runs C1, the marble calibration from a wrong start (about an hour on 2 cores;
 // its folder, results/calibrate_marble, replays when run again).
 // --shpb-only runs A12 and the granite under impact (B5 dynamic; about 3 minutes on 2 cores).
+// --deformable-marble-only runs B1D, the deformable marble against the paper and the rigid
+//   marble, and draws verification/b1d_rigid_deformable.png (about 6 minutes on 2 cores).
+// --stability-only runs the stiff and extreme cases only.
 // --marble-only runs the marble's published cases only (B1, B2; about 15 minutes on 2 cores).
 // --speeds-only runs only the quasi-static speed table: fixed against adaptive platen speeds on
 // the default model (about 8 minutes on one core).
@@ -255,19 +259,38 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
   return failed;
 }
 
+// The stiff and extreme cases' table; returns how many are not acceptable.
+int write_stability(std::ostream& out, const std::string& source_dir, const std::string& binary) {
+  out << "\n## Stiff and extreme cases\n\nEach is `tests/models/e2e_small.toml` with one change, "
+         "run for at most the steps shown. It must finish or stop with a clear message (exit code "
+         "3), never produce NaN, crash or hang.\n\n"
+      << "| case | change | exit code | outcome | steps | time step | history finite | wall time | "
+         "acceptable |\n"
+      << "|---|---|---|---|---|---|---|---|---|\n";
+  int failed = 0;
+  for (const auto& o : stability_cases(source_dir, binary)) {
+    failed += !o.acceptable();
+    out << fmt::format("| {} | {} | {} | {} | {} | {:.3g} s | {} | {:.1f} s | {} |\n", o.name,
+                       o.change, o.exit_code, o.status, o.steps, o.time_step,
+                       o.finite ? "yes" : "**no**", o.seconds, o.acceptable() ? "yes" : "**no**");
+  }
+  return failed;
+}
+
 int main(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr,
                  "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
                  "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only] "
                  "[--corrosion-only] [--marble-only] [--dynamics-only] [--shpb-only] "
-                 "[--calibration-only]\n",
+                 "[--calibration-only] [--deformable-marble-only] [--stability-only]\n",
                  argv[0]);
     return 2;
   }
   bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false,
        grains_only = false, speeds_only = false, creep_only = false, corrosion_only = false,
-       marble_only = false, dynamics_only = false, shpb_only = false, calibration_only = false;
+       marble_only = false, dynamics_only = false, shpb_only = false, calibration_only = false,
+       deformable_marble_only = false, stability_only = false;
   // Each flag and the parts it asks for.
   const std::map<std::string, std::vector<bool*>, std::less<>> options{
       {"--analytic-only", {&analytic_only}},
@@ -280,7 +303,9 @@ int main(int argc, char** argv) {
       {"--dynamics-only", {&dynamics_only}},
       {"--shpb-only", {&shpb_only}},
       {"--calibration-only", {&calibration_only}},
-      {"--marble-only", {&marble_only}}};
+      {"--marble-only", {&marble_only}},
+      {"--deformable-marble-only", {&deformable_marble_only}},
+      {"--stability-only", {&stability_only}}};
   for (int i = 4; i < argc; ++i) {
     const auto option = options.find(std::string_view(argv[i]));
     if (option == options.end()) {
@@ -347,6 +372,29 @@ int main(int argc, char** argv) {
     write_table_head(out, "calibration (C1)", "--calibration-only");
     int failed = 0;
     const auto rows = c1_marble_calibration(argv[1], argv[2], "results/calibrate_marble");
+    for (const auto& r : rows) {
+      failed += !r.pass();
+      out << report_row(r);
+    }
+    std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, rows.size(), argv[3]);
+    return failed ? 1 : 0;
+  }
+  if (stability_only) {  // the stiff and extreme cases (about 4 minutes on one core)
+    std::ofstream out(argv[3]);
+    out << "# vorodec verification report: stiff and extreme cases only\n\n"
+        << fmt::format("Generated {} on {} by `vorodec_verify --stability-only`.\n", utc_now(),
+                       host_name());
+    const int failed = write_stability(out, argv[1], argv[2]);
+    std::fprintf(stderr, "%d cases not acceptable; report: %s\n", failed, argv[3]);
+    return failed ? 1 : 0;
+  }
+  if (deformable_marble_only) {  // B1D (about 6 minutes on 2 cores)
+    std::ofstream out(argv[3]);
+    write_table_head(out, "deformable marble (B1D)", "--deformable-marble-only");
+    int failed = 0;
+    const auto rows = b1_deformable_marble(
+        argv[1], argv[2],
+        std::filesystem::path(argv[3]).parent_path() / "b1d_rigid_deformable.png");
     for (const auto& r : rows) {
       failed += !r.pass();
       out << report_row(r);
@@ -438,19 +486,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, results.size(), argv[3]);
     return failed ? 1 : 0;
   }
-  out << "\n## Stiff and extreme cases\n\nEach is `tests/models/e2e_small.toml` with one change, "
-         "run "
-         "for at most the steps shown. It must finish or stop with a clear message (exit code 3), "
-         "never produce NaN, crash or hang.\n\n"
-      << "| case | change | exit code | outcome | steps | time step | history finite | wall time | "
-         "acceptable |\n"
-      << "|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& o : stability_cases(argv[1], argv[2])) {
-    failed += !o.acceptable();
-    out << fmt::format("| {} | {} | {} | {} | {} | {:.3g} s | {} | {:.1f} s | {} |\n", o.name,
-                       o.change, o.exit_code, o.status, o.steps, o.time_step,
-                       o.finite ? "yes" : "**no**", o.seconds, o.acceptable() ? "yes" : "**no**");
-  }
+  failed += write_stability(out, argv[1], argv[2]);
   failed += write_undamped_energy(out, analytic_only ? 100000 : 1000000,
                                   std::filesystem::path(argv[3]).parent_path(), argv[1]);
   std::vector<Ladder> whole_model;

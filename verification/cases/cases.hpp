@@ -77,6 +77,11 @@ CaseResult quiet_row_long_run(long steps);
 std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::string& binary);
 // C1: `vorodec calibrate models/calibrate_marble.toml` into `out` (about an hour on 2 cores; run
 // again on the same folder, it replays): each target at the best evaluation, and the wall time.
+// B1D: models/ucs_deformable_marble.toml against the paper and against the rigid marble; draws
+// their stress-strain curves and crack maps to `figure` (about 6 minutes on 2 cores).
+std::vector<CaseResult> b1_deformable_marble(const std::string& source_dir,
+                                             const std::string& binary,
+                                             const std::filesystem::path& figure);
 std::vector<CaseResult> c1_marble_calibration(const std::string& source_dir,
                                               const std::string& binary,
                                               const std::filesystem::path& out);

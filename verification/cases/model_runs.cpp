@@ -90,6 +90,9 @@ CaseResult energy_balance(const std::string& id, const ModelRun& run, const std:
   const double work = column("boundary_work");
   double stored = column("strain_energy") + column("kinetic_energy") + column("damping_energy") +
                   column("friction_energy") + column("breakage_energy");
+  if (h.column("zone_stress_yy") >= 0)  // deformable blocks: strain_energy holds the zones'
+    e.reference =
+        "boundary work = contact and zone strain + kinetic + damping + friction + breakage";
   if (h.column("viscous_energy") >= 0) {  // Burger's contacts: their dashpots' work
     stored += column("viscous_energy");
     e.reference += " + viscous";

@@ -48,6 +48,20 @@ void write_sliver_specimen(const fs::path& file, double sliver) {
     }
 }
 
+// e2e_small with deformable blocks of intact marble and joints 55 times stiffer, never failing.
+std::vector<std::pair<std::string, std::string>> deformable_stiff_joints(
+    std::vector<std::pair<std::string, std::string>> more) {
+  std::vector<std::pair<std::string, std::string>> edits{
+      {"density = 2602         # kg/m^3",
+       "density = 2602\ndeformable = true\nzone_size = 1e-3\nE = 70e9\nnu = 0.25"},
+      {"jkn = 1.8e13", "jkn = 1e15"},
+      {"jks = 7.3e12", "jks = 1e15"},
+      {"mean = 14e6", "mean = 1e11"},
+      {"mean = 24e6", "mean = 1e11"}};
+  edits.insert(edits.end(), more.begin(), more.end());
+  return edits;
+}
+
 std::string slurp(const fs::path& f) {
   std::ifstream in(f);
   return {std::istreambuf_iterator<char>(in), {}};
@@ -133,6 +147,13 @@ std::vector<StabilityOutcome> stability_cases(const std::string& source_dir,
        "fixed_time_step = 1e-6 s instead of density scaling (above the critical step)",
        {{"time_step = 1e-6", "fixed_time_step = 1e-6"}},
        3000},
+      // Issue 26: this once stopped within 700 steps (energy out of nothing) on a 511-block disc.
+      {"deformable, stiff joints",
+       "deformable blocks (1 mm zones, E 70 GPa), jkn = jks = 1e15 Pa/m, strengths out of reach, "
+       "no density scaling, safety factor 0.2",
+       deformable_stiff_joints({{"time_step = 1e-6", "time_step = 0\nsafety_factor = 0.2"}}), 5000},
+      {"deformable, stiff joints, density scaling",
+       "the same with density scaling (time_step 1e-6 s)", deformable_stiff_joints({}), 5000},
   };
   const fs::path model = fs::path(source_dir) / "tests/models/e2e_small.toml";
   const fs::path dir =

@@ -2,8 +2,8 @@
 // blocks and in a Voronoi bar, and the energy a quiet boundary reflects.
 #include <fmt/format.h>
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
