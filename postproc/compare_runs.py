@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Compares two or more vorodec runs of the same specimen: axial stress against axial strain, and
-each run's crack map (cracks.csv: red tensile, blue shear) with its crack counts and the fraction
+each run's crack map (cracks.csv: red tensile, blue shear) with its crack counts and lengths and the fraction
 of cracks within 30 degrees of the (vertical) load axis.
 
 Usage: postproc/compare_runs.py RUN_DIR RUN_DIR... [--labels A B...] -o out.png
@@ -56,8 +56,10 @@ def main():
             ax.add_collection(LineCollection(1e3 * seg[mask], colors=colour, linewidths=0.8))
         o = c["orientation_deg"] % 180.0
         near = np.mean((o >= 60) & (o <= 120)) if len(o) else float("nan")
-        ax.set_title("%s: %d tensile, %d shear\n%.0f %% within 30 deg of the axis" % (
-            label, tensile.sum(), (~tensile).sum(), 100 * near), fontsize=9)
+        length = c["length"] * 1e3
+        ax.set_title("%s: %d tensile (%.0f mm), %d shear (%.0f mm)\n%.0f %% within 30 deg of the "
+                     "axis" % (label, tensile.sum(), length[tensile].sum(), (~tensile).sum(),
+                               length[~tensile].sum(), 100 * near), fontsize=9)
         ax.set_aspect("equal")
         ax.autoscale()
         ax.set_xlabel("x (mm)")

@@ -25,6 +25,14 @@ namespace {
 const model::ElasticMaterial rock{30e9, 0.25};
 }  // namespace
 
+TEST(Deformable, JointBetweenZonedBlocksHasItsNormalStiffness) {
+  // Zones from the block's size down to 31 rounding lengths, and a rounding length 25 times
+  // finer than the zones.
+  for (const auto& [h, d] :
+       {std::pair{0.05, 2e-4}, std::pair{0.00625, 2e-4}, std::pair{0.025, 1e-3}})
+    EXPECT_TRUE(passes(deformable_joint(h, d)));
+}
+
 TEST(Deformable, A13PatchTestGivesExactUniformStress) {
   EXPECT_TRUE(passes(a13_patch_test()));
 }

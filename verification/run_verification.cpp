@@ -3,6 +3,7 @@
 //                       [--grains-only] [--speeds-only] [--creep-only] [--corrosion-only]
 //                       [--marble-only] [--dynamics-only] [--shpb-only] [--calibration-only]
 //                       [--deformable-marble-only] [--stability-only]
+//                       [--deformable-joint-only]
 // --ladders adds the whole-model convergence ladders (about 10 minutes on one core).
 // --grains-only runs the grain-based cases only (G1, G2, B5; about 6 minutes on 2 cores).
 // --dynamics-only runs A8, A9, the quiet boundaries and the undamped assembly (about 6 minutes).
@@ -12,6 +13,7 @@
 // --deformable-marble-only runs B1D, the deformable marble against the paper and the rigid
 //   marble, and draws verification/b1d_rigid_deformable.png (about 6 minutes on 2 cores).
 // --stability-only runs the stiff and extreme cases only.
+// --deformable-joint-only runs the joint between two zoned blocks and its zone-size ladders.
 // --marble-only runs the marble's published cases only (B1, B2; about 15 minutes on 2 cores).
 // --speeds-only runs only the quasi-static speed table: fixed against adaptive platen speeds on
 // the default model (about 8 minutes on one core).
@@ -283,14 +285,15 @@ int main(int argc, char** argv) {
                  "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
                  "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only] "
                  "[--corrosion-only] [--marble-only] [--dynamics-only] [--shpb-only] "
-                 "[--calibration-only] [--deformable-marble-only] [--stability-only]\n",
+                 "[--calibration-only] [--deformable-marble-only] [--stability-only] "
+                 "[--deformable-joint-only]\n",
                  argv[0]);
     return 2;
   }
   bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false,
        grains_only = false, speeds_only = false, creep_only = false, corrosion_only = false,
        marble_only = false, dynamics_only = false, shpb_only = false, calibration_only = false,
-       deformable_marble_only = false, stability_only = false;
+       deformable_marble_only = false, stability_only = false, joint_only = false;
   // Each flag and the parts it asks for.
   const std::map<std::string, std::vector<bool*>, std::less<>> options{
       {"--analytic-only", {&analytic_only}},
@@ -305,7 +308,8 @@ int main(int argc, char** argv) {
       {"--calibration-only", {&calibration_only}},
       {"--marble-only", {&marble_only}},
       {"--deformable-marble-only", {&deformable_marble_only}},
-      {"--stability-only", {&stability_only}}};
+      {"--stability-only", {&stability_only}},
+      {"--deformable-joint-only", {&joint_only}}};
   for (int i = 4; i < argc; ++i) {
     const auto option = options.find(std::string_view(argv[i]));
     if (option == options.end()) {
@@ -379,6 +383,28 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, rows.size(), argv[3]);
     return failed ? 1 : 0;
   }
+  if (joint_only) {  // the deformable joint's stiffness against the zone size (about a minute)
+    std::ofstream out(argv[3]);
+    write_table_head(out, "joints between deformable blocks (A13)", "--deformable-joint-only");
+    const CaseResult r = deformable_joint(0.0125, 2e-4);
+    out << report_row(r);
+    const std::filesystem::path dir = std::filesystem::path(argv[3]).parent_path();
+    int k = 0;
+    for (const Ladder& l : deformable_joint_ladders()) {
+      out << fmt::format(
+          "\n### {}\n\nReference: {} = {:.6g} Pa/m. Observed order: {}.\n\n| {} | {} | error | "
+          "wall time |\n|---|---|---|---|\n",
+          l.name, l.reference, l.reference_value, order_text(l), l.parameter, l.quantity);
+      for (const LadderRung& g : l.rungs)
+        out << fmt::format("| {:.4g} | {:.6g} | {:.3g} | {:.2f} s |\n", g.parameter, g.value,
+                           g.error, g.seconds);
+      const std::string stem = fmt::format("a13_joint_ladder_{}", k++);
+      if (cost_accuracy_plot(l, dir, argv[1], stem))
+        out << fmt::format("\n![error against run time]({}.png)\n", stem);
+    }
+    std::fprintf(stderr, "report: %s\n", argv[3]);
+    return r.pass() ? 0 : 1;
+  }
   if (stability_only) {  // the stiff and extreme cases (about 4 minutes on one core)
     std::ofstream out(argv[3]);
     out << "# vorodec verification report: stiff and extreme cases only\n\n"
@@ -434,7 +460,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s %s: %s\n", c.id.c_str(), results.back().name.c_str(),
                  results.back().pass() ? "pass" : "FAIL");
   }
-  for (auto& r : grains_only ? std::vector<CaseResult>{} : deformable_column(0.01)) {
+  std::vector<CaseResult> deformable_rows;
+  if (!grains_only) {
+    deformable_rows = deformable_column(0.01);
+    deformable_rows.push_back(deformable_joint(0.0125, 2e-4));
+  }
+  for (auto& r : deformable_rows) {
     std::fprintf(stderr, "%s %s: %s\n", r.id.c_str(), r.name.c_str(),
                  r.informational ? "info"
                  : r.pass()      ? "pass"

@@ -53,6 +53,9 @@ CaseResult a13_patch_test();
 // A deformable column on a rigid platen under its own weight, and between platens under uniaxial
 // stress: stress and displacement against the plane-strain elastic solution.
 std::vector<CaseResult> deformable_column(double zone_size);
+// Two deformable blocks stacked across a straight joint between frictionless platens, pressed
+// and relaxed: the joint's stress over its closure against jkn.
+CaseResult deformable_joint(double zone_size, double rounding_length);
 
 // A9 and quiet boundaries (verification/cases/wave_cases.cpp, seconds): the P-wave speed in a
 // row of rigid blocks at four pulse wavelengths (dispersion below 20 blocks: reported), the input
@@ -163,6 +166,8 @@ std::vector<Ladder> model_ladders(const std::string& source_dir, const std::stri
 // tests/models/deformable_small.toml, elastic (strengths out of reach), one thread: the apparent
 // Young's modulus against the zone size, relative to the finest zoning. About a minute.
 Ladder deformable_ladder(const std::string& source_dir, const std::string& binary);
+// deformable_joint against the zone size, at rounding lengths 0.2 and 1 mm (about a minute).
+std::vector<Ladder> deformable_joint_ladders();
 
 // Quasi-static speed-ups against a converged reference (issue 7): the default model at fixed
 // platen speeds and with adaptive platen speeds (stage key adaptive_velocity), one thread each.

@@ -201,4 +201,97 @@ std::vector<CaseResult> deformable_column(double h) {
   return out;
 }
 
+CaseResult deformable_joint(double h, double rounding) {
+  constexpr double W = 0.05, H = 0.1;  // m: two 0.05 x 0.05 blocks, one above the other
+  const model::ElasticMaterial mat{E, nu};
+  const double jkn = E / (1 - nu * nu) / 0.01;  // Pa/m: the joint as compliant as 1 cm of rock
+  const auto t0 = std::chrono::steady_clock::now();
+  model::Model m;
+  m.rounding_length = rounding;
+  const auto rect = [](double x0, double y0, double x1, double y1) {
+    return std::vector<model::Point>{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  };
+  model::add_deformable_block(m, rect(0, 0, W, H / 2), rho, mat, h, Group::specimen);
+  model::add_deformable_block(m, rect(0, H / 2, W, H), rho, mat, h, Group::specimen);
+  model::add_block(m, rect(-W, -0.02, 2 * W, 0), rho, Group::bottom_platen);
+  model::add_block(m, rect(-W, H, 2 * W, H + 0.02), rho, Group::top_platen);
+  // The joint: elastic in both directions (no lateral drift of one block on the other); the
+  // platens: frictionless (uniaxial stress).
+  std::vector<std::unique_ptr<laws::LawGroup>> groups;
+  groups.push_back(laws::find_law("linear_elastic")->make(params({{"jkn", jkn}, {"jks", jkn}}), 7));
+  groups.push_back(laws::find_law("mohr_coulomb")
+                       ->make(params({{"jkn", jkn},
+                                      {"jks", 0},
+                                      {"friction", 0},
+                                      {"tension", 0},
+                                      {"cohesion", 0},
+                                      {"dilation", 0}}),
+                              7));
+  solver::LawTable table;
+  const auto specimen = static_cast<std::size_t>(Group::specimen);
+  table.law[specimen][specimen] = 0;
+  for (const Group platen : {Group::bottom_platen, Group::top_platen}) {
+    table.law[specimen][static_cast<std::size_t>(platen)] = 1;
+    table.law[static_cast<std::size_t>(platen)][specimen] = 1;
+  }
+  solver::SolverSettings s;
+  s.contact_tolerance = rounding;
+  auto solver = std::make_unique<solver::Solver>(m, std::move(groups), table, s);
+  solver->initialise();
+  const std::size_t top = 3;
+  const double target = m.blocks.y0[top] - 1e-4 * H;
+  while (m.blocks.y[top] > target) {
+    m.blocks.vy[top] = -std::min(1e-2, (m.blocks.y[top] - target) / solver->dt());
+    solver->step();
+  }
+  m.blocks.vy[top] = 0;
+  relax(*solver, 2000, 400000, 1e-12);
+  const auto& z = m.zoning;
+  // The jump across the joint: the top block's lowest gridpoints against the bottom block's
+  // highest (both start at H / 2).
+  double below = 0, above = 0;
+  int nb = 0, na = 0;
+  for (std::size_t g = 0; g < z.gridpoints(); ++g) {
+    if (std::abs(z.y0[g] - H / 2) > 1e-9) continue;
+    (z.block[g] == 0 ? below : above) += z.y[g] - z.y0[g];
+    ++(z.block[g] == 0 ? nb : na);
+  }
+  const double closure = below / nb - above / na;  // > 0: the joint closes
+  const double stress = solver->contact_force(top).y / W;
+  CaseResult r{"A13",
+               "two deformable blocks across a straight joint, uniaxial stress: joint stiffness "
+               "sigma / closure",
+               "jkn (the joint law's normal stiffness)",
+               jkn,
+               stress / closure,
+               0,
+               0.01,
+               fmt::format("zone size {} m, rounding {} m, {} zones, {} steps", h, rounding,
+                           z.zones.size(), solver->steps()),
+               seconds_since(t0)};
+  r.error = std::abs(r.measured - r.expected) / r.expected;
+  return r;
+}
+
+std::vector<Ladder> deformable_joint_ladders() {
+  std::vector<Ladder> out;
+  for (const double d : {2e-4, 1e-3}) {
+    Ladder l{fmt::format("A13 joint between zoned blocks, rounding length {:g} m: "
+                         "sigma / closure against the zone size",
+                         d),
+             "zone size (m); no default (zone_size is required)",
+             "joint stiffness (Pa/m)",
+             "exact: jkn",
+             0,
+             {}};
+    for (const double h : {0.05, 0.025, 0.0125, 0.00625, 0.003125, 0.0015625}) {
+      const CaseResult r = deformable_joint(h, d);
+      l.reference_value = r.expected;
+      l.rungs.push_back({h, r.measured, r.error, r.seconds, false});
+    }
+    out.push_back(l);
+  }
+  return out;
+}
+
 }  // namespace vorodec::verification
