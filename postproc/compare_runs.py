@@ -57,7 +57,7 @@ def main():
         o = c["orientation_deg"] % 180.0
         near = np.mean((o >= 60) & (o <= 120)) if len(o) else float("nan")
         length = c["length"] * 1e3
-        ax.set_title("%s: %d tensile (%.0f mm), %d shear (%.0f mm)\n%.0f %% within 30 deg of the "
+        ax.set_title("%s\n%d tensile (%.0f mm), %d shear (%.0f mm)\n%.0f %% within 30 deg of the "
                      "axis" % (label, tensile.sum(), length[tensile].sum(), (~tensile).sum(),
                                length[~tensile].sum(), 100 * near), fontsize=9)
         ax.set_aspect("equal")

@@ -13,13 +13,15 @@
 // --deformable-marble-only runs B1D, the deformable marble against the paper and the rigid
 //   marble, and draws verification/b1d_rigid_deformable.png (about 6 minutes on 2 cores).
 // --stability-only runs the stiff and extreme cases only.
-// --deformable-joint-only runs the joint between two zoned blocks and its zone-size ladders.
+// --deformable-joint-only runs the joint between two zoned blocks, its zone-size ladders and the
+//   deformable_small zone-size ladder (about 2 minutes).
 // --marble-only runs the marble's published cases only (B1, B2; about 15 minutes on 2 cores).
 // --speeds-only runs only the quasi-static speed table: fixed against adaptive platen speeds on
 // the default model (about 8 minutes on one core).
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -383,22 +385,27 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, rows.size(), argv[3]);
     return failed ? 1 : 0;
   }
-  if (joint_only) {  // the deformable joint's stiffness against the zone size (about a minute)
+  if (joint_only) {  // the joint's stiffness and deformable_small's E against the zone size (2 min)
     std::ofstream out(argv[3]);
     write_table_head(out, "joints between deformable blocks (A13)", "--deformable-joint-only");
     const CaseResult r = deformable_joint(0.0125, 2e-4);
     out << report_row(r);
     const std::filesystem::path dir = std::filesystem::path(argv[3]).parent_path();
     int k = 0;
-    for (const Ladder& l : deformable_joint_ladders()) {
+    std::vector<Ladder> ladders = deformable_joint_ladders();
+    ladders.push_back(deformable_ladder(argv[1], argv[2]));
+    for (const Ladder& l : ladders) {
       out << fmt::format(
-          "\n### {}\n\nReference: {} = {:.6g} Pa/m. Observed order: {}.\n\n| {} | {} | error | "
+          "\n### {}\n\nReference: {} = {:.6g}. Observed order: {}. `*` marks the default.\n\n| {} "
+          "| {} | error | "
           "wall time |\n|---|---|---|---|\n",
           l.name, l.reference, l.reference_value, order_text(l), l.parameter, l.quantity);
       for (const LadderRung& g : l.rungs)
-        out << fmt::format("| {:.4g} | {:.6g} | {:.3g} | {:.2f} s |\n", g.parameter, g.value,
-                           g.error, g.seconds);
-      const std::string stem = fmt::format("a13_joint_ladder_{}", k++);
+        out << fmt::format("| {:.4g}{} | {:.6g} | {:.3g} | {:.2f} s |\n", g.parameter,
+                           g.is_default ? " *" : "", g.value, g.error, g.seconds);
+      const std::string stem =
+          std::array{"zoning_ladder_joint_d0.2mm", "zoning_ladder_joint_d1mm",
+                     "zoning_ladder_deformable_small"}[static_cast<std::size_t>(k++)];
       if (cost_accuracy_plot(l, dir, argv[1], stem))
         out << fmt::format("\n![error against run time]({}.png)\n", stem);
     }
