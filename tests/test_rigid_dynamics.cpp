@@ -88,3 +88,25 @@ TEST(RigidBlocks, WorldRefreshRotationAgreesWithLibmToOneUlp) {
     EXPECT_NEAR(m.blocks.world[k].corner.y, m.blocks.y[i] + s * p.x + c * p.y, 1e-15);
   }
 }
+
+// The damping's work is booked at each step's mean velocity, which is what the kinetic energy at
+// half steps loses to it (the balance closes to 3e-6 here); booked at the new velocity, this
+// heavily damped block on a spring at a coarse time step missed 18 % of its energy (measured).
+TEST(RigidBlocks, DampedOscillationKeepsItsEnergyBalance) {
+  model::Model m;
+  m.rounding_length = 0.01 * a;
+  model::add_block(m, verification::square(0, a, a), rho, Group::specimen);
+  model::add_block(m, verification::square(0, 0, a), rho, Group::bottom_platen);
+  solver::SolverSettings s;
+  s.local_damping = 0.8;
+  s.safety_factor = 0.5;
+  auto solver = verification::make_solver(m, "linear_elastic",
+                                          verification::params({{"jkn", 1e10}, {"jks", 1e10}}), s);
+  m.blocks.vy[0] = 0.01;
+  m.blocks.vx[0] = 0.004;
+  const double e0 = solver->kinetic_energy();
+  for (int i = 0; i < 400; ++i) solver->step();
+  const double kept = solver->kinetic_energy() + solver->contact_strain_energy();
+  ASSERT_LT(kept, 0.5 * e0);
+  EXPECT_NEAR(kept + solver->energy().damping, e0, 1e-5 * e0);
+}

@@ -64,11 +64,12 @@ void Solver::integrate_gridpoints() {
       const double fy = zfy_[i] + z.cfy[i] + z.fy[i] + z.gravity_mass[i] * g.y;
       const double dfx = -alpha * std::abs(fx) * sign(u);
       const double dfy = -alpha * std::abs(fy) * sign(v);
+      const double u0 = u, v0 = v;
       u += (fx + dfx) / z.mass[i] * dt;
       v += (fy + dfy) / z.mass[i] * dt;
       z.vx[i] = u;
       z.vy[i] = v;
-      w_damp -= (dfx * u + dfy * v) * dt;
+      w_damp -= (dfx * (u0 + u) + dfy * (v0 + v)) * 0.5 * dt;  // as integrate_blocks
       w_boundary += (z.fx[i] * u + z.fy[i] * v) * dt;
       w_body += z.gravity_mass[i] * (g.x * u + g.y * v) * dt;
     }
