@@ -135,6 +135,15 @@ TEST(BadInput, TinyDiscDiameterIsRefusedAtOnce) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
+TEST(BadInput, FlatsOfABrazilianDiscBeyond60DegreesAreRefused) {
+  const std::string disc =
+      replace(replace(good_model, "width = 0.02\nheight = 0.04",
+                      "shape = \"disc\"\ndiameter = 0.03\nflat_angle = 75"),
+              "block_count = 60", "block_count = 60\nmin_edge_length = 2.5e-4");
+  EXPECT_TRUE(
+      rejected("steep_flats", disc, "specimen.flat_angle", 5, "must be at most 60 deg (got 75)"));
+}
+
 TEST(BadInput, HugeSpecimenWidthIsRefused) {
   EXPECT_TRUE(rejected("huge_width", replace(good_model, "width = 0.02", "width = 1e300"),
                        "specimen.width", 3, "must be between 1e-06 m and 1000 m"));

@@ -217,6 +217,30 @@ TEST(Tessellation, DiscCornersAreVertices) {
   }
 }
 
+// A flattened Brazilian disc: straight flats subtending 2 alpha at the top and the bottom, their
+// ends outline corners, nothing beyond them, and the blocks fill the outline.
+TEST(Tessellation, FlattenedDiscHasItsTwoFlats) {
+  TessellationSettings s = disc(400);
+  const double alpha = 10.0 * std::numbers::pi / 180, r = kDiameter / 2;
+  s.outline.flat_angle = 2 * alpha;
+  const Tessellation t = tessellate(s);
+  const double half = r * std::sin(alpha), rise = r * std::cos(alpha);
+  for (const double y : {r + rise, r - rise}) {
+    for (const double x : {r - half, r + half}) {
+      EXPECT_TRUE(std::any_of(t.vertices.begin(), t.vertices.end(),
+                              [&](Point v) {
+                                return distance(v, {x, y}) < 1e-12;
+                              }))
+          << "flat end " << x << ", " << y;
+    }
+  }
+  for (const Point v : t.vertices) EXPECT_LE(std::abs(v.y - r), rise * (1 + 1e-12));
+  // The circle less its two segments, to the polygon's chordal error (96 segments: 7e-4).
+  const double area = std::numbers::pi * r * r - r * r * (2 * alpha - std::sin(2 * alpha));
+  EXPECT_NEAR(t.report.outline_area / area, 1.0, 1e-3);
+  EXPECT_NEAR(total_area(t) / t.report.outline_area, 1.0, 1e-9);
+}
+
 TEST(Tessellation, BlocksAreCounterClockwiseAndConvex) {
   const Tessellation t = tessellate(rectangle(1000, 7));
   for (const Block& block : t.blocks) {

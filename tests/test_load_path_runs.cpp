@@ -106,6 +106,20 @@ TEST(LoadPathRuns, BrazilianDiscSplitsAlongTheLoadedDiameter) {
   EXPECT_EQ(json_number(s, "youngs_modulus_Pa"), 0.0);  // no modulus from a disc
 }
 
+// On flats subtending 2 alpha the platens spread their load, and the strength is the centre's
+// stress under a load over that arc (Hondros): 2F/(pi D t) (sin 2 alpha - alpha) / alpha.
+TEST(LoadPathRuns, FlattenedDiscReportsTheStrengthOfALoadSpreadOverItsFlats) {
+  const fs::path out = out_dir("brazilian_flat");
+  ASSERT_EQ(run_vorodec("run " + (models / "brazilian_small.toml").string() +
+                        " --threads 1 --no-vtk --set specimen.flat_angle=20 --out " + out.string()),
+            0);
+  const std::string s = slurp(out / "summary.json");
+  const double peak = json_number(s, "peak_stress_Pa"), alpha = 10.0 * M_PI / 180;
+  EXPECT_NEAR(json_number(s, "tensile_strength_Pa"),
+              2.0 / M_PI * peak * (std::sin(2 * alpha) - alpha) / alpha, 1e-6 * peak);
+  EXPECT_GT(tensile_cracks_near(out, 90.0), 0.5);
+}
+
 TEST(LoadPathRuns, ConstantStressStagesHoldEachStepOfAMultiStepCreepPath) {
   const fs::path out = run("creep_steps_small");
   std::ifstream in(out / "history.csv");

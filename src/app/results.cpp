@@ -182,8 +182,13 @@ RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve 
                             : measure::elastic_constants(curve.strain, curve.stress, curve.lateral);
   summary.peak_stress = peak;
   // Brazilian test (disc between platens): sigma_t = 2 F / (pi D t), and the axial stress is
-  // F / (D t). Direct tension: the largest pull.
-  if (brazilian)
+  // F / (D t); on flats subtending 2 alpha, times (sin 2 alpha - alpha) / alpha, the centre's
+  // stress under a load spread over that arc (Hondros 1959). Direct tension: the largest pull.
+  const double half_flat = cfg.tessellation.outline.flat_angle / 2;
+  if (brazilian && half_flat > 0)
+    summary.tensile_strength =
+        2.0 / M_PI * peak * (std::sin(2 * half_flat) - half_flat) / half_flat;
+  else if (brazilian)
     summary.tensile_strength = 2.0 / M_PI * peak;
   else if (trough < 0)
     summary.tensile_strength = -trough;

@@ -99,6 +99,7 @@ class OutlinePolygon {
       hi_ = {outline.width, outline.height};
       corners_ = {lo_, {hi_.x, 0}, hi_, {0, hi_.y}};
     } else {
+      uniform_ = true;
       make_disc(outline, segment_length);
     }
     centre_ = 0.5 * (lo_ + hi_);
@@ -169,13 +170,32 @@ class OutlinePolygon {
                       ? outline.disc_segments
                       : std::max(8, static_cast<int>(std::ceil(std::numbers::pi * outline.diameter /
                                                                segment_length)));
-    hi_ = {outline.diameter, outline.diameter};
-    for (int k = 0; k < n; ++k) {
-      const double angle = 2 * std::numbers::pi * k / n;
-      corners_.push_back({r + r * std::cos(angle), r + r * std::sin(angle)});
+    const double step = 2 * std::numbers::pi / n, half_flat = outline.flat_angle / 2;
+    // A flattened disc: straight flats for the platens, centred on the top and bottom and each
+    // subtending flat_angle at the centre, between the polygon's points on the circle.
+    std::vector<double> angles;
+    if (half_flat > 0) {
+      const double top = std::numbers::pi / 2, bottom = 3 * std::numbers::pi / 2;
+      for (const double a :
+           {top - half_flat, top + half_flat, bottom - half_flat, bottom + half_flat})
+        angles.push_back(a);
+      for (int k = 0; k < n; ++k) {
+        const double a = step * k;
+        // Off the flats, and not within half a segment of their ends (no sliver edges).
+        if (std::abs(a - top) < half_flat + step / 2 || std::abs(a - bottom) < half_flat + step / 2)
+          continue;
+        angles.push_back(a);
+      }
+      std::sort(angles.begin(), angles.end());
+      uniform_ = false;
+    } else {
+      for (int k = 0; k < n; ++k) angles.push_back(step * k);
     }
+    for (const double a : angles) corners_.push_back({r + r * std::cos(a), r + r * std::sin(a)});
+    lo_ = {0, r - r * std::cos(half_flat)};
+    hi_ = {outline.diameter, r + r * std::cos(half_flat)};
     is_box_ = false;
-    inradius_ = r * std::cos(std::numbers::pi / n);
+    inradius_ = r * std::min(std::cos(std::numbers::pi / n), std::cos(half_flat));
   }
 
   Point corner(std::size_t k) const { return corners_[k % corners_.size()]; }
@@ -190,7 +210,7 @@ class OutlinePolygon {
   std::size_t segment_towards(Point p) const {
     const Point v = p - centre_;
     const std::size_t n = corners_.size();
-    if (!is_box_) {
+    if (uniform_) {
       double angle = std::atan2(v.y, v.x);
       if (angle < 0) angle += 2 * std::numbers::pi;
       return static_cast<std::size_t>(angle / (2 * std::numbers::pi) * static_cast<double>(n)) % n;
@@ -205,6 +225,7 @@ class OutlinePolygon {
   Point lo_{0, 0}, hi_{0, 0}, centre_;
   double inradius_ = 0;
   bool is_box_ = true;
+  bool uniform_ = false;  // a round disc's equal segments: the segment follows from the angle
 };
 
 // Hilbert index of (x, y) on a 2^16 x 2^16 grid.

@@ -124,6 +124,10 @@ void read_outline(TomlSection& sec, geometry::Outline& outline) {
   } else if (shape == "disc") {
     outline.kind = geometry::OutlineKind::disc;
     outline.diameter = specimen_length(sec, "diameter");
+    // A flattened Brazilian disc: flats that spread the platens' load over an arc.
+    const double flat = sec.non_negative("flat_angle", 0.0);
+    if (flat > 60.0) sec.fail("flat_angle", fmt::format("must be at most 60 deg (got {:g})", flat));
+    outline.flat_angle = flat * std::numbers::pi / 180.0;
   } else {
     sec.fail("shape", fmt::format("must be \"rectangle\" or \"disc\" (got \"{}\")", shape));
   }

@@ -307,17 +307,22 @@ std::vector<CaseResult> marble_tension(const std::string& source_dir, const std:
   r.push_back({"BT", "direct tensile strength (Pa)", "derived; the paper gives none", 0, direct, 0,
                0, "models/tension_marble.toml", pull.seconds, true});
   r.push_back(relative(
-      "BT", "Brazilian tensile strength 2F/(pi D t) against the direct tensile strength (Pa)",
-      "elastic disc theory: the Brazilian formula is the tensile stress at the disc centre, so "
-      "for a brittle material it equals the direct tensile strength (ISRM 1978)",
-      direct, brazilian, 0.25, "models/brazilian_marble.toml: 50 mm disc, 511 blocks",
+      "BT",
+      "Brazilian tensile strength 2F/(pi D t) (sin 2a - a)/a, flats 2a = 20 deg, against the "
+      "direct tensile strength (Pa)",
+      "elastic disc theory: the Brazilian formula is the tensile stress at the disc centre "
+      "(Hondros 1959 for a load spread over 2a), so for a brittle material it equals the direct "
+      "tensile strength (ISRM 1978)",
+      direct, brazilian, 0.25,
+      "models/brazilian_marble.toml: 50 mm flattened disc (flats 20 deg), 511 blocks",
       disc.seconds));
   r.push_back(relative("BT", "Young's modulus in tension against in compression (Pa)",
                        "same contacts, linear before cracking: equal moduli (B1 target 29.2 GPa)",
                        29.22e9, json_number(pull.summary, "youngs_modulus_Pa"), 0.05,
                        "models/tension_marble.toml", pull.seconds));
   r.push_back(energy_balance("BT", pull, "models/tension_marble.toml (direct tension)"));
-  r.push_back(energy_balance("BT", disc, "models/brazilian_marble.toml (Brazilian disc)"));
+  r.push_back(
+      energy_balance("BT", disc, "models/brazilian_marble.toml (flattened Brazilian disc)"));
   return r;
 }
 

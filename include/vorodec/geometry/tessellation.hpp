@@ -13,10 +13,11 @@ enum class OutlineKind { rectangle, disc };
 
 struct Outline {
   OutlineKind kind = OutlineKind::rectangle;
-  double width = 0.0;     // m, rectangle: lower-left corner at (0, 0)
-  double height = 0.0;    // m
-  double diameter = 0.0;  // m, disc: centre at (diameter/2, diameter/2)
-  int disc_segments = 0;  // straight segments approximating the disc; 0 = chosen from block size
+  double width = 0.0;       // m, rectangle: lower-left corner at (0, 0)
+  double height = 0.0;      // m
+  double diameter = 0.0;    // m, disc: centre at (diameter/2, diameter/2)
+  int disc_segments = 0;    // straight segments approximating the disc; 0 = chosen from block size
+  double flat_angle = 0.0;  // rad, disc: angle each loading flat (top, bottom) subtends; 0 = round
 };
 
 struct TessellationSettings {
