@@ -24,7 +24,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 PHASE_COLOURS = {"start": "k", "dimensional": "tab:purple", "sensitivity": "tab:grey",
-                 "linearised": "tab:orange", "optimiser": "tab:blue"}
+                 "linearised": "tab:orange", "optimiser": "tab:blue", "rescaled": "tab:green"}
 
 
 def rows(path):

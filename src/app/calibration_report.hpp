@@ -13,7 +13,7 @@ namespace vorodec::app {
 // One parameter set, run as every test x every seed.
 struct Evaluation {
   std::size_t index = 0;       // 1, 2, ...: its folder runs/e0001
-  std::string phase;           // start, dimensional, sensitivity, linearised, optimiser
+  std::string phase;           // start, dimensional, sensitivity, linearised, optimiser, rescaled
   std::vector<double> values;  // per parameter
   std::vector<double> mean, scatter, scaled_error;  // per target: over the seeds; error/tolerance
   double objective = INFINITY;                      // weighted mean of scaled_error^2
