@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -102,6 +104,53 @@ TEST(Calibrate, RecoversPlantedParametersFromAWrongStartAndReplaysOnRerunUnderAn
   EXPECT_EQ(again.output.find(": exit "), std::string::npos) << "a run ran again:\n"
                                                              << again.output;
   EXPECT_EQ(slurp(model), before);
+}
+
+// Tolerances below the seeds' noise keep the search going: every new best of the optimiser is
+// followed by its rescaling, jkn by wanted / achieved E and the cohesion by wanted / achieved UCS.
+TEST(Calibrate, OptimisersNewBestIsRescaledOntoItsProportionalTargets) {
+  const fs::path dir = out_dir("calibrate_rescaled");
+  std::string text = calibration(3e10, 6e7);
+  for (std::size_t at; (at = text.find("tolerance = 0.01")) != std::string::npos;)
+    text.replace(at, 16, "tolerance = 0.0005");
+  text.replace(text.find("runs = 60"), 9, "runs = 40");
+  const fs::path file = write(dir, "c.toml", text);
+  const auto o =
+      run_capture(fmt::format("calibrate {} --out {}", file.string(), (dir / "out").string()));
+  ASSERT_EQ(o.code, 5) << o.output;  // the budget ends it
+  std::istringstream in(slurp(dir / "out" / "history.csv"));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  for (std::istringstream h(line); std::getline(h, line, ',');) header.push_back(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    std::map<std::string, std::string> row;
+    std::istringstream cells(line);
+    for (const std::string& key : header) std::getline(cells, row[key], ',');
+    rows.push_back(row);
+  }
+  const auto num = [](const std::map<std::string, std::string>& r, const std::string& key) {
+    return std::stod(r.at(key));
+  };
+  int rescaled = 0;
+  double best = INFINITY;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i]["phase"] == "rescaled") {
+      ASSERT_GT(i, 0u);
+      const auto& from = rows[i - 1];
+      EXPECT_EQ(from.at("phase"), "optimiser");
+      EXPECT_LE(num(from, "objective"), best);  // a new best
+      EXPECT_NEAR(num(rows[i], "joints.jkn"), num(from, "joints.jkn") * 3e10 / num(from, "E_mean"),
+                  1e-4 * num(rows[i], "joints.jkn"));
+      EXPECT_NEAR(num(rows[i], "joints.cohesion.mean"),
+                  num(from, "joints.cohesion.mean") * 6e7 / num(from, "UCS_mean"),
+                  1e-4 * num(rows[i], "joints.cohesion.mean"));
+      ++rescaled;
+    }
+    best = std::min(best, num(rows[i], "objective"));
+  }
+  EXPECT_GT(rescaled, 0) << slurp(dir / "out" / "history.csv");
 }
 
 TEST(Calibrate, TargetNoTestProducesExitsTwoNamingTheTarget) {
