@@ -107,7 +107,8 @@ TEST(Calibrate, RecoversPlantedParametersFromAWrongStartAndReplaysOnRerunUnderAn
 }
 
 // Tolerances below the seeds' noise keep the search going: every new best of the optimiser is
-// followed by its rescaling, jkn by wanted / achieved E and the cohesion by wanted / achieved UCS.
+// followed by its rescaling, jkn by wanted / achieved E and the cohesion by wanted / achieved UCS,
+// and a rescaled set that is the new best is where the optimiser starts again.
 TEST(Calibrate, OptimisersNewBestIsRescaledOntoItsProportionalTargets) {
   const fs::path dir = out_dir("calibrate_rescaled");
   std::string text = calibration(3e10, 6e7);
@@ -146,6 +147,12 @@ TEST(Calibrate, OptimisersNewBestIsRescaledOntoItsProportionalTargets) {
       EXPECT_NEAR(num(rows[i], "joints.cohesion.mean"),
                   num(from, "joints.cohesion.mean") * 6e7 / num(from, "UCS_mean"),
                   1e-4 * num(rows[i], "joints.cohesion.mean"));
+      // A rescaled new best restarts the optimiser there: its first point is that set.
+      if (num(rows[i], "objective") < std::min(best, num(from, "objective")) &&
+          i + 1 < rows.size()) {
+        EXPECT_EQ(rows[i + 1]["joints.jkn"] + rows[i + 1]["joints.cohesion.mean"],
+                  rows[i]["joints.jkn"] + rows[i]["joints.cohesion.mean"]);
+      }
       ++rescaled;
     }
     best = std::min(best, num(rows[i], "objective"));

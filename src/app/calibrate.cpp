@@ -148,6 +148,7 @@ class Calibration {
   double shared_seconds_ = 0;  // s, rank 0's elapsed() after the last evaluation
   double point_seconds_ = 0;   // s per point of the last evaluation
   bool search_ended_ = false;  // BOBYQA stopped on its own (steps below its tolerance)
+  bool restart_ = false;       // BOBYQA stopped to start again from a rescaled best
   std::vector<Evaluation> history_;
   std::vector<Sensitivity> sensitivities_;
   Evaluation best_;
@@ -405,8 +406,11 @@ void Calibration::optimise() {
       // (strengths by wanted / achieved UCS, jkn by E). Near the optimum this moves those targets
       // onto their values and leaves the ratios (nu, phi) alone, a step BOBYQA's model, blurred
       // by the seeds' noise, does not find (C1: the best set missed UCS and c by +8 % each).
-      if (!converged(e) && e.index == best_.index && misses_proportional(e) && affordable(2))
-        evaluate({dimensional_guess(e)}, "rescaled");
+      if (!converged(e) && e.index == best_.index && misses_proportional(e) && affordable(2)) {
+        // A better rescaled set: BOBYQA's model was built elsewhere, so it starts again there.
+        restart_ = evaluate({dimensional_guess(e)}, "rescaled").front().index == best_.index;
+        if (restart_) opt.force_stop();
+      }
       if (converged(best_) || !affordable(1)) opt.force_stop();
       return std::isfinite(e.objective) ? e.objective : kFailedObjective;
     } catch (...) {
@@ -463,7 +467,10 @@ int Calibration::run() {
     const Sensitivity s = sensitivity(base);
     if (!converged(best_) && affordable(1)) evaluate({linearised_step(base, s)}, "linearised");
   }
-  if (!converged(best_) && affordable(1)) optimise();
+  for (bool again = true; again && !converged(best_) && affordable(1); again = restart_) {
+    restart_ = false;
+    optimise();
+  }
   // The micro-macro relations at the calibrated point, when the budget allows.
   if (affordable(plan_.parameters.size())) sensitivity(best_);
   finish(converged(best_));
