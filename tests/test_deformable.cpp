@@ -91,6 +91,13 @@ model::Model zoned_pentagon() {
   model::add_deformable_block(m, poly, 2600, rock, 0.004, model::Group::specimen);
   return m;
 }
+
+// The pentagon's solver: stiff elastic contacts (it has none of its own) and local damping alpha.
+auto pentagon_solver(model::Model& m, double alpha) {
+  solver::SolverSettings s;
+  s.local_damping = alpha;
+  return make_solver(m, "linear_elastic", params({{"jkn", 1e13}, {"jks", 1e13}}), s);
+}
 }  // namespace
 
 // Issue 26: the damping's work is booked at each step's mean velocity, which is what the kinetic
@@ -98,9 +105,7 @@ model::Model zoned_pentagon() {
 // velocity, a heavily damped vibration of a zoned block missed 4.7 % of its energy (measured).
 TEST(Deformable, DampedVibrationKeepsItsEnergyBalance) {
   model::Model m = zoned_pentagon();
-  solver::SolverSettings s;
-  s.local_damping = 0.8;
-  auto solver = make_solver(m, "linear_elastic", params({{"jkn", 1e13}, {"jks", 1e13}}), s);
+  auto solver = pentagon_solver(m, 0.8);
   auto& z = m.zoning;
   for (std::size_t g = 0; g < z.gridpoints(); ++g) {  // a stretching, shearing start
     z.vx[g] = 0.05 * (z.x[g] - 0.01) / 0.02;
@@ -156,9 +161,7 @@ TEST(Deformable, RigidRotationOfAnySizeLeavesTheZonesStressFree) {
 // stage of the turn, not a stress of the angle turned.
 TEST(Deformable, SpinningBlockKeepsItsEnergy) {
   model::Model m = zoned_pentagon();
-  solver::SolverSettings s;
-  s.local_damping = 0.0;
-  auto solver = make_solver(m, "linear_elastic", params({{"jkn", 1e13}, {"jks", 1e13}}), s);
+  auto solver = pentagon_solver(m, 0.0);
   auto& z = m.zoning;
   const int turn = 20000;  // steps
   const double omega = 2 * M_PI / (turn * solver->dt());
