@@ -184,12 +184,10 @@ RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve 
   // Brazilian test (disc between platens): sigma_t = 2 F / (pi D t), and the axial stress is
   // F / (D t); on flats subtending 2 alpha, times (sin 2 alpha - alpha) / alpha, the centre's
   // stress under a load spread over that arc (Hondros 1959). Direct tension: the largest pull.
-  const double half_flat = cfg.tessellation.outline.flat_angle / 2;
-  if (brazilian && half_flat > 0)
-    summary.tensile_strength =
-        2.0 / M_PI * peak * (std::sin(2 * half_flat) - half_flat) / half_flat;
-  else if (brazilian)
-    summary.tensile_strength = 2.0 / M_PI * peak;
+  const double a = cfg.tessellation.outline.flat_angle / 2;
+  const double spread = a > 0 ? (std::sin(2 * a) - a) / a : 1.0;
+  if (brazilian)
+    summary.tensile_strength = 2.0 / M_PI * peak * spread;
   else if (trough < 0)
     summary.tensile_strength = -trough;
   summary.failure_stages = measure::failure_stages(curve.strain, curve.stress, curve.failure_rate);
