@@ -1,5 +1,6 @@
 // Load paths: stage control (servo directions, end on stress, stall), cyclic blocks, per-cycle
-// measures on loops with known areas, failure stages, and cyclic / tension / Brazilian runs.
+// measures on loops with known areas, failure stages, elastic constants, and cyclic / tension /
+// Brazilian runs.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,6 +15,7 @@
 #include "vorodec/loading/stage_control.hpp"
 #include "vorodec/measure/cycles.hpp"
 #include "vorodec/measure/failure_stages.hpp"
+#include "vorodec/measure/specimen.hpp"
 
 namespace fs = std::filesystem;
 using namespace vorodec;
@@ -145,6 +147,24 @@ TEST(FailureStages, InitiationAtFirstFailureAndAccelerationWhereTheRateDoubles) 
   EXPECT_NEAR(f.peak_stress, 3e7, 1.0);
   EXPECT_GT(f.accelerating_stress, 2.0e7);
   EXPECT_LT(f.accelerating_stress, 2.15e7);
+}
+
+TEST(ElasticConstants, InitialRatioFitsTheLinearRangeAndTheTangentOneTheDilatingMiddle) {
+  // E 30 GPa to the peak at 1.5e-3; lateral strain -0.18 e up to 35 % of peak (its linear range),
+  // then -0.25 e beyond: the 10-30 % fit gives 0.18, the 40-60 % fit 0.25.
+  std::vector<double> e, s, l;
+  const double knee = 0.35 * 1.5e-3;
+  for (int i = 0; i <= 200; ++i) {
+    const double x = 1e-5 * i;
+    e.push_back(x);
+    s.push_back(x <= 1.5e-3 ? 3e10 * x : 4.5e7 - 3e10 * (x - 1.5e-3));
+    l.push_back(x <= knee ? -0.18 * x : -0.18 * knee - 0.25 * (x - knee));
+  }
+  const auto c = measure::elastic_constants(e, s, l);
+  ASSERT_TRUE(c.valid);
+  EXPECT_NEAR(c.youngs_modulus, 3e10, 1.0);
+  EXPECT_NEAR(c.poisson_ratio, 0.25, 1e-12);
+  EXPECT_NEAR(c.initial_poisson_ratio, 0.18, 1e-12);
 }
 
 TEST(StageControl, ReloadingThatDipsWhileItsVelocityRampsUpDoesNotStall) {

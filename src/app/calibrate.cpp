@@ -132,7 +132,9 @@ class Calibration {
   void record(Evaluation e);
   std::vector<double> dimensional_guess(const Evaluation& e) const;
   Sensitivity sensitivity(Evaluation base);
-  std::vector<double> linearised_step(const Evaluation& base, const Sensitivity& s) const;
+  std::vector<double> linearised_step(const Evaluation& from, const Sensitivity& s,
+                                      double fraction) const;
+  void linearised_steps(const Sensitivity& s);
   void optimise();
   void finish(bool done);
 
@@ -361,25 +363,43 @@ Sensitivity Calibration::sensitivity(Evaluation base) {
   return s;
 }
 
-// The least-squares step of the linearised targets (the smallest such step), within the bounds.
-std::vector<double> Calibration::linearised_step(const Evaluation& base,
-                                                 const Sensitivity& s) const {
-  const long m = static_cast<long>(plan_.targets.size()), n = static_cast<long>(base.values.size());
+// `fraction` of the least-squares step of the targets linearised at `from` with the sensitivity
+// `s` (the smallest such step), within the bounds.
+std::vector<double> Calibration::linearised_step(const Evaluation& from, const Sensitivity& s,
+                                                 double fraction) const {
+  const long m = static_cast<long>(plan_.targets.size()), n = static_cast<long>(from.values.size());
   Eigen::MatrixXd J(m, n);
   Eigen::VectorXd r(m);
   for (long i = 0; i < m; ++i) {
     const double w = std::sqrt(plan_.targets[static_cast<std::size_t>(i)].weight);
-    r(i) = -w * base.scaled_error[static_cast<std::size_t>(i)];
+    r(i) = -w * from.scaled_error[static_cast<std::size_t>(i)];
     for (long j = 0; j < n; ++j) J(i, j) = w * s.jacobian[static_cast<std::size_t>(i * n + j)];
   }
-  if (!r.allFinite()) return base.values;
+  if (!r.allFinite()) return from.values;
   const Eigen::VectorXd du = J.completeOrthogonalDecomposition().solve(r);
-  std::vector<double> v = base.values;
+  std::vector<double> v = from.values;
   for (long j = 0; j < n; ++j) {
     const auto k = static_cast<std::size_t>(j);
-    v[k] = from_unit(k, to_unit(k, v[k]) + du(j));
+    v[k] = from_unit(k, to_unit(k, v[k]) + fraction * du(j));
   }
   return v;
+}
+
+// Gauss-Newton steps with the one sensitivity (chord steps), each from the best set so far: a
+// step that is no better (or whose runs fail) is halved, twice at most; a step that no halving
+// improves ends them. Far from the targets they move every target at once, where BOBYQA's first
+// steps, sized to one tolerance, crawl (the granite's start was 14 tolerances off in E).
+void Calibration::linearised_steps(const Sensitivity& s) {
+  constexpr int kSteps = 4, kHalvings = 2;
+  for (int k = 0; k < kSteps && !converged(best_); ++k) {
+    const Evaluation from = best_;
+    bool improved = false;
+    double fraction = 1.0;
+    for (int h = 0; h <= kHalvings && !improved && affordable(1); ++h, fraction /= 2)
+      improved =
+          evaluate({linearised_step(from, s, fraction)}, "linearised").front().index == best_.index;
+    if (!improved) return;
+  }
 }
 
 // BOBYQA (Powell's bounded quadratic-model search) in the unit coordinates from the best point.
@@ -468,9 +488,8 @@ int Calibration::run() {
   if (!converged(best_) && dimensional && affordable(1))
     evaluate({dimensional_guess(best_)}, "dimensional");
   if (!converged(best_) && affordable(plan_.parameters.size() + 1)) {
-    const Evaluation base = best_;
-    const Sensitivity s = sensitivity(base);
-    if (!converged(best_) && affordable(1)) evaluate({linearised_step(base, s)}, "linearised");
+    const Sensitivity s = sensitivity(best_);
+    linearised_steps(s);
   }
   for (bool again = true; again && !converged(best_) && affordable(1); again = restart_) {
     restart_ = false;

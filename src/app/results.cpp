@@ -139,13 +139,16 @@ void write_summary(const std::filesystem::path& file, const io::ModelConfig& cfg
           "  \"tensile_strength_Pa\": {:.8g},\n  \"failure_stages\": {},\n"
           "  \"cycles\": {},\n"
           "  \"youngs_modulus_Pa\": {:.8g},\n  \"poisson_ratio\": {:.6g},\n"
-          "  \"elastic_fit\": \"tangent over 40-60 % of peak, plane-strain apparent values\",\n"
+          "  \"initial_poisson_ratio\": {:.6g},\n"
+          "  \"elastic_fit\": \"tangent over 40-60 % of peak (initial: 10-30 %), plane-strain "
+          "apparent values\",\n"
           "  \"cracks\": {{\"tensile\": {}, \"shear\": {}}},\n{}  \"failure_rate\": {:.6g},\n"
           "  \"blocks\": {},\n  \"initial_contacts\": {},\n  \"time_step_s\": {:.6g},\n"
           "  \"steps\": {},\n  \"wall_time_s\": {:.3f}{}{}{}{}{}{}\n}}\n",
           cfg.file.filename().string(), s.status, s.peak_stress, s.tensile_strength, stages,
-          s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.cracks_tensile, s.cracks_shear,
-          grains, initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
+          s.cycles.size(), s.youngs_modulus, s.poisson_ratio, s.initial_poisson_ratio,
+          s.cracks_tensile, s.cracks_shear, grains,
+          initial_contacts ? double(broken) / double(initial_contacts) : 0.0, s.blocks,
           initial_contacts, dt, s.steps, s.wall_seconds,
           s.zones ? fmt::format(",\n  \"zones\": {},\n  \"zone_stress_Pa\": {{\"xx\": {:.8g}, "
                                 "\"yy\": {:.8g}, \"xy\": {:.8g}}}",
@@ -202,6 +205,7 @@ RunSummary write_results(const io::ModelConfig& cfg, const RunView& view, Curve 
     summary.zone_stress_xy = -m.xy;
   }
   summary.poisson_ratio = ec.poisson_ratio;
+  summary.initial_poisson_ratio = ec.initial_poisson_ratio;
   summary.steps = solver.steps();
   summary.contacts = model.contacts.size();
   for (const auto& e : solver.cracks())

@@ -18,6 +18,7 @@ namespace {
 const std::vector<std::string> kSummaryQuantities = {"peak_stress_Pa",
                                                      "youngs_modulus_Pa",
                                                      "poisson_ratio",
+                                                     "initial_poisson_ratio",
                                                      "tensile_strength_Pa",
                                                      "crack_initiation_stress_Pa",
                                                      "accelerating_crack_growth_stress_Pa",

@@ -1,6 +1,7 @@
 #include "vorodec/measure/specimen.hpp"
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 namespace vorodec::measure {
@@ -61,17 +62,24 @@ ElasticConstants elastic_constants(std::span<const double> axial_strain,
   const auto peak_it = std::max_element(axial_stress.begin(), axial_stress.end());
   const double peak = *peak_it;
   const auto n_pre = static_cast<std::size_t>(peak_it - axial_stress.begin());
-  std::vector<double> ea, sa, el;
-  for (std::size_t i = 0; i < n_pre; ++i) {
-    if (axial_stress[i] >= 0.4 * peak && axial_stress[i] <= 0.6 * peak) {
-      ea.push_back(axial_strain[i]);
-      sa.push_back(axial_stress[i]);
-      el.push_back(lateral_strain[i]);
+  // The pre-peak points between lo and hi times the peak: axial strain, stress, lateral strain.
+  const auto band = [&](double lo, double hi) {
+    std::array<std::vector<double>, 3> b;
+    for (std::size_t i = 0; i < n_pre; ++i) {
+      if (axial_stress[i] >= lo * peak && axial_stress[i] <= hi * peak) {
+        b[0].push_back(axial_strain[i]);
+        b[1].push_back(axial_stress[i]);
+        b[2].push_back(lateral_strain[i]);
+      }
     }
-  }
+    return b;
+  };
+  const auto [ea, sa, el] = band(0.4, 0.6);
   if (ea.size() < 3 || peak <= 0) return e;
   e.youngs_modulus = slope(ea, sa);
   e.poisson_ratio = -slope(ea, el);
+  if (const auto [ia, is, il] = band(0.1, 0.3); ia.size() >= 3)
+    e.initial_poisson_ratio = -slope(ia, il);
   e.valid = e.youngs_modulus > 0;
   return e;
 }

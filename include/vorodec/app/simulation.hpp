@@ -91,6 +91,7 @@ struct RunSummary {
   double peak_stress = 0;       // Pa
   double tensile_strength = 0;  // Pa: Brazilian (disc specimens) or direct tension (largest pull)
   double youngs_modulus = 0, poisson_ratio = 0;
+  double initial_poisson_ratio = 0;  // fit over 10-30 % of peak (the linear range)
   measure::FailureStages failure_stages;
   std::vector<measure::CycleMeasures> cycles;
   long steps = 0;

@@ -26,10 +26,14 @@ SpecimenState measure_specimen(const model::Model& model, const loading::Specime
 struct ElasticConstants {
   double youngs_modulus = 0;  // Pa, tangent modulus at 50 % of peak (fit over 40-60 %)
   double poisson_ratio = 0;
+  // The linear range's: fit over 10-30 % of peak, before cracks open (a cyclic test's first
+  // loading to 20 % sees it).
+  double initial_poisson_ratio = 0;
   bool valid = false;
 };
 
-// Fits the loading branch before the peak between 40 % and 60 % of the peak stress (ISRM 1979).
+// Fits the loading branch before the peak between 40 % and 60 % of the peak stress (ISRM 1979),
+// and between 10 % and 30 % for the initial ratio.
 ElasticConstants elastic_constants(std::span<const double> axial_strain,
                                    std::span<const double> axial_stress,
                                    std::span<const double> lateral_strain);
