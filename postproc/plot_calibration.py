@@ -22,6 +22,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.ticker import NullFormatter  # noqa: E402
 
 PHASE_COLOURS = {"start": "k", "dimensional": "tab:purple", "sensitivity": "tab:grey",
                  "linearised": "tab:orange", "optimiser": "tab:blue", "rescaled": "tab:green"}
@@ -125,21 +126,25 @@ def plot_micro_macro(sens, targets, out):
     params = list(dict.fromkeys(s["parameter"] for s in sens))
     last, _ = last_round(sens)
     scale_of = {t["target"]: unit(t["quantity"]) for t in targets}
-    fig, axes = plt.subplots(1, len(params), figsize=(3.6 * len(params), 3.3), squeeze=False)
+    fig, axes = plt.subplots(1, len(params), figsize=(3.9 * len(params), 4.0), squeeze=False)
     for j, p in enumerate(params):
         ax = axes[0][j]
         mine = [s for s in last if s["parameter"] == p]
-        target = max(mine, key=lambda s: abs(float(s["elasticity"])))["target"]
+        # The target this parameter moves most (a failed moved set's nan elasticity never wins).
+        target = max(mine, key=lambda s: np.nan_to_num(abs(float(s["elasticity"])), nan=-1.0))["target"]
         scale, label = scale_of[target]
         for s in sens:
             if s["parameter"] != p or s["target"] != target:
                 continue
             x = [float(s["parameter_base"]), float(s["parameter_moved"])]
             y = [float(s["target_base"]) * scale, float(s["target_moved"]) * scale]
-            ax.loglog(x, y, "o-", label="round %s: slope %+.2f (log-log)" % (s["round"], float(s["elasticity"])))
+            ax.loglog(x, y, "o-", label="round %s, from %.3g: slope %+.2f (log-log)"
+                      % (s["round"], x[0], float(s["elasticity"])))
+        # Unlabelled minor ticks: a short decade's nine labels overlap (the legend has the values).
+        ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel(p, fontsize=8)
         ax.set_ylabel("%s (%s)" % (target, label))
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18))
         ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(out, dpi=130)
