@@ -86,10 +86,12 @@ TEST(Calibrate, RecoversPlantedParametersFromAWrongStartAndReplaysOnRerunUnderAn
   const auto first = run_capture(fmt::format("calibrate {} --out {}", file.string(), out.string()));
   ASSERT_EQ(first.code, 0) << first.output;
   const fs::path model = out / "calibrated_e2e_small.toml";
-  // Targets within 1 % pin jkn (E ~ jkn) and the cohesion (UCS ~ strength) within about 1 %,
-  // plus the two's cross-effects (d ln UCS / d ln jkn = -0.1).
+  // Targets within 1 % pin jkn (E ~ jkn) to about 1 %, but the cohesion only as well as this
+  // 40-block specimen's UCS follows it: between two evaluations of a CI run (2026-12-03) the UCS
+  // rose 6 % for 3.7 % more cohesion (its failure sequence changed), and a set 3.2 % below the
+  // planted cohesion met both targets. Recovery from a start 100 % off is checked to 5 %.
   EXPECT_NEAR(calibrated(model, "joints.jkn") / kJkn, 1.0, 0.03) << slurp(model);
-  EXPECT_NEAR(calibrated(model, "joints.cohesion.mean") / kCohesion, 1.0, 0.03) << slurp(model);
+  EXPECT_NEAR(calibrated(model, "joints.cohesion.mean") / kCohesion, 1.0, 0.05) << slurp(model);
   EXPECT_NEAR(calibrated(model, "joints.jks") / calibrated(model, "joints.jkn"), 0.40556, 1e-9);
   const std::string report = slurp(out / "report.md");
   EXPECT_NE(report.find("every target within its tolerance"), std::string::npos) << report;
