@@ -133,7 +133,7 @@ class Calibration {
   std::vector<double> dimensional_guess(const Evaluation& e) const;
   Sensitivity sensitivity(Evaluation base);
   std::vector<double> linearised_step(const Evaluation& from, const Sensitivity& s,
-                                      double fraction) const;
+                                      double radius) const;
   void linearised_steps(const Sensitivity& s);
   void optimise();
   void finish(bool done);
@@ -363,10 +363,12 @@ Sensitivity Calibration::sensitivity(Evaluation base) {
   return s;
 }
 
-// `fraction` of the least-squares step of the targets linearised at `from` with the sensitivity
-// `s` (the smallest such step), within the bounds.
+// The least-squares step of the targets linearised at `from` with the sensitivity `s`, damped
+// (Levenberg-Marquardt) until no parameter moves by more than `radius` of its range. Undamped,
+// a parameter the targets barely see gets the largest move: the marble's Weibull shape, whose
+// +10 % moved nu0 by 0.1 %, went from 4 to its bound 8 in the first step.
 std::vector<double> Calibration::linearised_step(const Evaluation& from, const Sensitivity& s,
-                                                 double fraction) const {
+                                                 double radius) const {
   const long m = static_cast<long>(plan_.targets.size()), n = static_cast<long>(from.values.size());
   Eigen::MatrixXd J(m, n);
   Eigen::VectorXd r(m);
@@ -376,28 +378,48 @@ std::vector<double> Calibration::linearised_step(const Evaluation& from, const S
     for (long j = 0; j < n; ++j) J(i, j) = w * s.jacobian[static_cast<std::size_t>(i * n + j)];
   }
   if (!r.allFinite()) return from.values;
-  const Eigen::VectorXd du = J.completeOrthogonalDecomposition().solve(r);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd sv = svd.singularValues(), ur = svd.matrixU().transpose() * r;
+  const double floor = 1e-9 * (sv.size() ? sv(0) : 0.0);
+  // du(lambda) = V diag(s / (s^2 + lambda)) U^T r: lambda = 0 is the minimum-norm step.
+  const auto step = [&](double lambda) {
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(sv.size());
+    for (long k = 0; k < sv.size(); ++k)
+      if (sv(k) > floor) c(k) = sv(k) * ur(k) / (sv(k) * sv(k) + lambda);
+    return Eigen::VectorXd(svd.matrixV() * c);
+  };
+  Eigen::VectorXd du = step(0.0);
+  if (du.lpNorm<Eigen::Infinity>() > radius) {
+    // The largest move falls as lambda grows: bisect log(lambda) onto the radius.
+    double lo = 1e-12 * sv(0) * sv(0), hi = 1e12 * sv(0) * sv(0);
+    for (int k = 0; k < 100; ++k) {
+      const double mid = std::sqrt(lo * hi);
+      (step(mid).lpNorm<Eigen::Infinity>() > radius ? lo : hi) = mid;
+    }
+    du = step(hi);
+  }
   std::vector<double> v = from.values;
   for (long j = 0; j < n; ++j) {
     const auto k = static_cast<std::size_t>(j);
-    v[k] = from_unit(k, to_unit(k, v[k]) + fraction * du(j));
+    v[k] = from_unit(k, to_unit(k, v[k]) + du(j));
   }
   return v;
 }
 
-// Gauss-Newton steps with the one sensitivity (chord steps), each from the best set so far: a
-// step that is no better (or whose runs fail) is halved, twice at most; a step that no halving
-// improves ends them. Far from the targets they move every target at once, where BOBYQA's first
-// steps, sized to one tolerance, crawl (the granite's start was 14 tolerances off in E).
+// Gauss-Newton steps with the one sensitivity (chord steps), each from the best set so far and
+// within a trust radius of a quarter of each parameter's range: a step that is no better (or
+// whose runs fail) is retried with half the radius, twice at most; a step that no halving improves
+// ends them. Far from the targets they move every target at once, where BOBYQA's first steps,
+// sized to one tolerance, crawl (the granite's start was 14 tolerances off in E).
 void Calibration::linearised_steps(const Sensitivity& s) {
   constexpr int kSteps = 4, kHalvings = 2;
   for (int k = 0; k < kSteps && !converged(best_); ++k) {
     const Evaluation from = best_;
     bool improved = false;
-    double fraction = 1.0;
-    for (int h = 0; h <= kHalvings && !improved && affordable(1); ++h, fraction /= 2)
+    double radius = 0.25;
+    for (int h = 0; h <= kHalvings && !improved && affordable(1); ++h, radius /= 2)
       improved =
-          evaluate({linearised_step(from, s, fraction)}, "linearised").front().index == best_.index;
+          evaluate({linearised_step(from, s, radius)}, "linearised").front().index == best_.index;
     if (!improved) return;
   }
 }
