@@ -54,7 +54,8 @@ def plot_history(history, out):
         if m.any():
             ax.semilogy(ev[m], obj[m], "o", color=colour, label=phase)
             ax.semilogy(ev[m], worst[m], "x", color=colour)
-    ax.semilogy(ev, np.minimum.accumulate(obj), "-", color="tab:green", label="best objective")
+    best = np.array([int(r["best"]) - 1 for r in history])
+    ax.semilogy(ev, obj[best], "-", color="tab:green", label="best set's objective")
     ax.axhline(1.0, color="tab:red", lw=0.8, ls="--", label="worst target = its tolerance")
     ax.set_xlabel("evaluation")
     ax.set_ylabel("objective (o), worst |error| / tolerance (x)")

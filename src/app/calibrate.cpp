@@ -308,6 +308,7 @@ void Calibration::record(Evaluation e) {
   if (best_.values.empty() || (meets && !best_meets) ||
       (meets == best_meets && e.objective < best_.objective))
     best_ = e;
+  history_.back().best = best_.index;
   if (cluster_.rank() != 0) return;
   write_history(out_, plan_, history_);
 }

@@ -46,14 +46,15 @@ double tie_value(const io::Tie& tie, const std::vector<double>& v) {
 
 void write_history(const fs::path& out, const io::CalibrationPlan& plan,
                    const std::vector<Evaluation>& history) {
-  std::string s = "evaluation,phase,runs,elapsed_s,longest_run_s,failed_runs,objective,worst";
+  std::string s = "evaluation,phase,runs,elapsed_s,longest_run_s,failed_runs,objective,worst,best";
   for (const io::CalibrationParameter& p : plan.parameters) s.append(",").append(p.name);
   for (const io::CalibrationTarget& t : plan.targets)
     s += fmt::format(",{0}_mean,{0}_sd,{0}_error_over_tolerance", t.name);
   s += '\n';
   for (const Evaluation& e : history) {
-    s += fmt::format("{},{},{},{:.1f},{:.1f},{},{},{}", e.index, e.phase, e.runs, e.elapsed_seconds,
-                     e.wall_seconds, e.failed_runs, number(e.objective), number(e.worst));
+    s += fmt::format("{},{},{},{:.1f},{:.1f},{},{},{},{}", e.index, e.phase, e.runs,
+                     e.elapsed_seconds, e.wall_seconds, e.failed_runs, number(e.objective),
+                     number(e.worst), e.best);
     for (const double v : e.values) s.append(",").append(number(v));
     for (std::size_t t = 0; t < e.mean.size(); ++t)
       s += fmt::format(",{},{},{}", number(e.mean[t]), number(e.scatter[t]),

@@ -22,6 +22,7 @@ struct Evaluation {
   double wall_seconds = 0;     // s, its longest run
   double elapsed_seconds = 0;  // s of the calibration when it ended
   int failed_runs = 0;         // runs that exited non-zero
+  std::size_t best = 0;        // the best evaluation so far, this one included
 };
 
 // A one-at-a-time round around one evaluation; matrices are targets x parameters, row-major.

@@ -42,16 +42,9 @@ std::vector<CaseResult> calibration_rows(const std::string& source_dir, const st
          "-", 1, NAN, INFINITY, 0, "", 0});
     return rows;
   }
-  // The calibration's own choice: a set meeting every target first, then the lower objective.
-  const auto better = [&](std::size_t a, std::size_t b) {
-    const bool meets_a = history.number(a, "worst") <= 1, meets_b = history.number(b, "worst") <= 1;
-    return meets_a != meets_b ? meets_a
-                              : history.number(a, "objective") < history.number(b, "objective");
-  };
-  std::size_t best = 0;
-  for (std::size_t r = 1; r < history.rows.size(); ++r)
-    if (better(r, best)) best = r;
+  // The calibration's own choice, as its last row names it.
   const std::size_t last = history.rows.size() - 1;
+  const auto best = static_cast<std::size_t>(history.number(last, "best")) - 1;
   // Calibrated when the best evaluation met every target; the sensitivity round after it is for
   // the report.
   const double elapsed = history.number(best, "elapsed_s");
