@@ -54,7 +54,11 @@ def plot_history(history, out):
         if m.any():
             ax.semilogy(ev[m], obj[m], "o", color=colour, label=phase)
             ax.semilogy(ev[m], worst[m], "x", color=colour)
-    best = np.array([int(r["best"]) - 1 for r in history])
+    # history.csv names each evaluation's best so far (older ones did not: the lowest objective).
+    if "best" in history[0]:
+        best = np.array([int(r["best"]) - 1 for r in history])
+    else:
+        best = np.array([int(np.argmin(obj[: i + 1])) for i in range(len(obj))])
     ax.semilogy(ev, obj[best], "-", color="tab:green", label="best set's objective")
     ax.axhline(1.0, color="tab:red", lw=0.8, ls="--", label="worst target = its tolerance")
     ax.set_xlabel("evaluation")
@@ -134,15 +138,20 @@ def plot_micro_macro(sens, targets, out):
         # The target this parameter moves most (a failed moved set's nan elasticity never wins).
         target = max(mine, key=lambda s: np.nan_to_num(abs(float(s["elasticity"])), nan=-1.0))["target"]
         scale, label = scale_of[target]
+        xs = []
         for s in sens:
             if s["parameter"] != p or s["target"] != target:
                 continue
             x = [float(s["parameter_base"]), float(s["parameter_moved"])]
             y = [float(s["target_base"]) * scale, float(s["target_moved"]) * scale]
+            xs += x
             ax.loglog(x, y, "o-", label="round %s, from %.3g: slope %+.2f (log-log)"
                       % (s["round"], x[0], float(s["elasticity"])))
-        # Unlabelled minor ticks: a short decade's nine labels overlap (the legend has the values).
+        # Three labelled ticks across the points: a short decade has no major tick, and its nine
+        # minor labels overlap.
+        ticks = np.geomspace(min(xs), max(xs), 3)
         ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.set_xticks(ticks, ["%.3g" % t for t in ticks], fontsize=7)
         ax.set_xlabel(p, fontsize=8)
         ax.set_ylabel("%s (%s)" % (target, label))
         ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18))

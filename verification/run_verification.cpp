@@ -2,14 +2,17 @@
 // Usage: vorodec_verify <source dir> <vorodec binary> <report.md> [--analytic-only] [--ladders]
 //                       [--grains-only] [--speeds-only] [--creep-only] [--corrosion-only]
 //                       [--marble-only] [--dynamics-only] [--shpb-only] [--calibration-only]
+//                       [--granite-calibration-only] [--two-nu-only]
 //                       [--deformable-marble-only] [--stability-only]
 //                       [--deformable-joint-only]
 // --ladders adds the whole-model convergence ladders (about 10 minutes on one core).
 // --grains-only runs the grain-based cases only (G1, G2, B5; about 6 minutes on 2 cores).
 // --dynamics-only runs A8, A9, the quiet boundaries and the undamped assembly (about 6 minutes).
-// --calibration-only runs C1 and C2, the marble and granite calibrations from a wrong start (about
-// an hour and a quarter on 2 cores; their folders, results/calibrate_marble and
-// results/calibrate_granite, replay when run again).
+// --calibration-only runs C1 and C2, the marble and granite calibrations from a wrong start, and C3,
+// the marble's calibration to both of its nu (about two hours on 2 cores; their folders,
+// results/calibrate_marble, results/calibrate_granite and results/calibrate_marble_nu, replay when
+// run again). --granite-calibration-only runs C2 alone; --two-nu-only runs C3 and B2's first
+// loading with its set (models/ucs_marble_two_nu.toml; 2 minutes after C3 has run).
 // --shpb-only runs A12 and the granite under impact (B5 dynamic; about 3 minutes on 2 cores).
 // --deformable-marble-only runs B1D, the deformable marble against the paper and the rigid
 //   marble, and draws verification/b1d_rigid_deformable.png (about 6 minutes on 2 cores).
@@ -288,15 +291,17 @@ int main(int argc, char** argv) {
                  "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
                  "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only] "
                  "[--corrosion-only] [--marble-only] [--dynamics-only] [--shpb-only] "
-                 "[--calibration-only] [--deformable-marble-only] [--stability-only] "
+                 "[--calibration-only] [--granite-calibration-only] [--two-nu-only] "
+                 "[--deformable-marble-only] [--stability-only] "
                  "[--deformable-joint-only]\n",
                  argv[0]);
     return 2;
   }
   bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false,
        grains_only = false, speeds_only = false, creep_only = false, corrosion_only = false,
-       marble_only = false, dynamics_only = false, shpb_only = false, calibration_only = false,
-       deformable_marble_only = false, stability_only = false, joint_only = false;
+       marble_only = false, dynamics_only = false, shpb_only = false, c1 = false, c2 = false,
+       c3 = false, two_nu_b2 = false, deformable_marble_only = false, stability_only = false,
+       joint_only = false;
   // Each flag and the parts it asks for.
   const std::map<std::string, std::vector<bool*>, std::less<>> options{
       {"--analytic-only", {&analytic_only}},
@@ -308,7 +313,9 @@ int main(int argc, char** argv) {
       {"--corrosion-only", {&corrosion_only}},
       {"--dynamics-only", {&dynamics_only}},
       {"--shpb-only", {&shpb_only}},
-      {"--calibration-only", {&calibration_only}},
+      {"--calibration-only", {&c1, &c2, &c3}},
+      {"--granite-calibration-only", {&c2}},
+      {"--two-nu-only", {&c3, &two_nu_b2}},
       {"--marble-only", {&marble_only}},
       {"--deformable-marble-only", {&deformable_marble_only}},
       {"--stability-only", {&stability_only}},
@@ -374,13 +381,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d checks failed; report: %s\n", failed, argv[3]);
     return failed ? 1 : 0;
   }
-  if (calibration_only) {  // C1 and C2 (about an hour and a quarter on 2 cores)
+  if (c1 || c2 || c3) {  // the calibrations (C1 about an hour, C2 15 and C3 35 minutes)
     std::ofstream out(argv[3]);
-    write_table_head(out, "calibration (C1, C2)", "--calibration-only");
+    write_table_head(out, "calibration (C1, C2, C3)", "--calibration-only");
     int failed = 0;
-    auto rows = c1_marble_calibration(argv[1], argv[2], "results/calibrate_marble");
-    for (auto& r : c2_granite_calibration(argv[1], argv[2], "results/calibrate_granite"))
-      rows.push_back(std::move(r));
+    std::vector<CaseResult> rows;
+    const auto add = [&](std::vector<CaseResult> more) {
+      for (auto& r : more) rows.push_back(std::move(r));
+    };
+    if (c1) add(c1_marble_calibration(argv[1], argv[2], "results/calibrate_marble"));
+    if (c2) add(c2_granite_calibration(argv[1], argv[2], "results/calibrate_granite"));
+    if (c3) add(c3_marble_two_nu_calibration(argv[1], argv[2], "results/calibrate_marble_nu"));
+    if (two_nu_b2) add(b2_marble_cyclic_two_nu(argv[1], argv[2]));
     for (const auto& r : rows) {
       failed += !r.pass();
       out << report_row(r);

@@ -1,4 +1,4 @@
-// C1, C2: `vorodec calibrate` from laboratory targets back to contact parameters (issue 25).
+// C1, C2, C3: `vorodec calibrate` from laboratory targets back to contact parameters (issue 25).
 #include <fmt/format.h>
 #include <sys/wait.h>
 
@@ -16,10 +16,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// What a calibration case checks: its id, calibration file, where its targets come from, and the
-// issue's wall-time limit.
+// What a calibration case checks: its id, calibration file, where its targets come from, its
+// start, and the issue's wall-time limit.
 struct CalibrationCase {
-  std::string id, file, specimen, tests, reference, envelope_reference;
+  std::string id, file, specimen, tests, reference, envelope_reference, start;
   double time_limit = 0;  // s
 };
 
@@ -50,10 +50,9 @@ std::vector<CaseResult> calibration_rows(const std::string& source_dir, const st
   const double elapsed = history.number(best, "elapsed_s");
   const double total = history.number(last, "elapsed_s");
   const std::string settings = fmt::format(
-      "3 seeds, {}; best of {} evaluations (no. {:.0f}), {:.0f} runs; start: every parameter x2 or "
-      "/2",
-      c.tests, history.rows.size(), history.number(best, "evaluation"),
-      history.number(best, "runs"));
+      "3 seeds, {}; best of {} evaluations (no. {:.0f}), {:.0f} runs; start: {}", c.tests,
+      history.rows.size(), history.number(best, "evaluation"), history.number(best, "runs"),
+      c.start);
   for (std::size_t t = 0; t < targets.rows.size(); ++t) {
     const std::string name = targets.rows[t][0];
     const bool absolute = targets.number(t, "absolute") == 1;
@@ -93,14 +92,26 @@ std::vector<CaseResult> c1_marble_calibration(const std::string& source_dir,
                                               const std::string& binary, const fs::path& out) {
   return calibration_rows(source_dir, binary, out,
                           {"C1", "calibrate_marble.toml", "marble", "tests at 0 and 10 MPa",
-                           "paper, Table 1", "paper's envelope (0-20 MPa)", 3600});
+                           "paper, Table 1", "paper's envelope (0-20 MPa)",
+                           "every parameter x2 or /2", 3600});
 }
 
 std::vector<CaseResult> c2_granite_calibration(const std::string& source_dir,
                                                const std::string& binary, const fs::path& out) {
   return calibration_rows(source_dir, binary, out,
                           {"C2", "calibrate_granite.toml", "granite", "UCS and direct tension",
-                           "SHPB granite paper, static tests", "-", 7200});
+                           "SHPB granite paper, static tests", "-", "every parameter x2 or /2",
+                           7200});
+}
+
+std::vector<CaseResult> c3_marble_two_nu_calibration(const std::string& source_dir,
+                                                     const std::string& binary,
+                                                     const fs::path& out) {
+  return calibration_rows(
+      source_dir, binary, out,
+      {"C3", "calibrate_marble_nu.toml", "marble, both nu", "tests at 0 and 10 MPa",
+       "paper, Table 1; cyclic paper's first loading (nu0)", "paper's envelope (0-20 MPa)",
+       "the hand set with Weibull shape 2 and jkn/jks 2.3", 3600});
 }
 
 }  // namespace vorodec::verification

@@ -92,12 +92,20 @@ std::vector<CaseResult> c1_marble_calibration(const std::string& source_dir,
 std::vector<CaseResult> c2_granite_calibration(const std::string& source_dir,
                                                const std::string& binary,
                                                const std::filesystem::path& out);
+// C3: `vorodec calibrate models/calibrate_marble_nu.toml` (the marble with both of its nu; about
+// 35 minutes), as C1.
+std::vector<CaseResult> c3_marble_two_nu_calibration(const std::string& source_dir,
+                                                     const std::string& binary,
+                                                     const std::filesystem::path& out);
 
 // Load paths of the marble study (minutes): the confinement series and its Mohr-Coulomb and
 // Hoek-Brown fits (B1), variable-amplitude cyclic loading (B2), direct tension and Brazilian.
 std::vector<CaseResult> b1_marble_triaxial(const std::string& source_dir,
                                            const std::string& binary);
 std::vector<CaseResult> b2_marble_cyclic(const std::string& source_dir, const std::string& binary);
+// B2's first loading with the marble calibrated to both of its nu (models/ucs_marble_two_nu.toml).
+std::vector<CaseResult> b2_marble_cyclic_two_nu(const std::string& source_dir,
+                                                const std::string& binary);
 std::vector<CaseResult> marble_tension(const std::string& source_dir, const std::string& binary);
 
 // Grain-based specimens: mineral area fractions of a side x side granite specimen (in-process,

@@ -41,6 +41,19 @@ ModelRun run_model(const std::string& binary, const std::filesystem::path& model
   return r;
 }
 
+std::string set_arguments(const std::filesystem::path& model) {
+  std::ifstream in(model);
+  std::string args;
+  for (std::string line; std::getline(in, line) && line.rfind('[', 0) != 0;) {
+    const auto eq = line.find(" = "), dot = line.find('.');
+    if (line.empty() || line[0] == '#' || eq == std::string::npos || dot > eq) continue;
+    std::string value = line.substr(eq + 3, line.find('#') - eq - 3);
+    value.erase(value.find_last_not_of(' ') + 1);
+    args += fmt::format(" --set {}={}", line.substr(0, eq), value);
+  }
+  return args;
+}
+
 double json_number(const std::string& json, const std::string& key) {
   const std::string tag = "\"" + key + "\": ";
   const auto pos = json.find(tag);

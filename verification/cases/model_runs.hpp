@@ -17,6 +17,10 @@ struct ModelRun {
 ModelRun run_model(const std::string& binary, const std::filesystem::path& model,
                    const std::filesystem::path& out, const std::string& args = "");
 
+// `--set key=value` for each top-level dotted key of a model file (a set written over its base,
+// as models/ucs_marble_two_nu.toml), so another model on the same base can run with it.
+std::string set_arguments(const std::filesystem::path& model);
+
 // A number in summary.json ("key": value); NaN if absent.
 double json_number(const std::string& json, const std::string& key);
 
