@@ -132,8 +132,8 @@ class Calibration {
   void record(Evaluation e);
   std::vector<double> dimensional_guess(const Evaluation& e) const;
   Sensitivity sensitivity(Evaluation base);
-  std::vector<double> linearised_step(const Evaluation& from, const Sensitivity& s,
-                                      double radius) const;
+  std::pair<std::vector<double>, double> linearised_step(const Evaluation& from,
+                                                         const Sensitivity& s, double radius) const;
   void linearised_steps(const Sensitivity& s);
   void optimise();
   void finish(bool done);
@@ -368,8 +368,10 @@ Sensitivity Calibration::sensitivity(Evaluation base) {
 // (Levenberg-Marquardt) until no parameter moves by more than `radius` of its range. Undamped,
 // a parameter the targets barely see gets the largest move: the marble's Weibull shape, whose
 // +10 % moved nu0 by 0.1 %, went from 4 to its bound 8 in the first step.
-std::vector<double> Calibration::linearised_step(const Evaluation& from, const Sensitivity& s,
-                                                 double radius) const {
+// Returns the set and its largest move (in [0, 1] coordinates).
+std::pair<std::vector<double>, double> Calibration::linearised_step(const Evaluation& from,
+                                                                    const Sensitivity& s,
+                                                                    double radius) const {
   const long m = static_cast<long>(plan_.targets.size()), n = static_cast<long>(from.values.size());
   Eigen::MatrixXd J(m, n);
   Eigen::VectorXd r(m);
@@ -378,7 +380,7 @@ std::vector<double> Calibration::linearised_step(const Evaluation& from, const S
     r(i) = -w * from.scaled_error[static_cast<std::size_t>(i)];
     for (long j = 0; j < n; ++j) J(i, j) = w * s.jacobian[static_cast<std::size_t>(i * n + j)];
   }
-  if (!r.allFinite()) return from.values;
+  if (!r.allFinite()) return {from.values, 0.0};
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd sv = svd.singularValues(), ur = svd.matrixU().transpose() * r;
   const double floor = 1e-9 * (sv.size() ? sv(0) : 0.0);
@@ -404,13 +406,13 @@ std::vector<double> Calibration::linearised_step(const Evaluation& from, const S
     const auto k = static_cast<std::size_t>(j);
     v[k] = from_unit(k, to_unit(k, v[k]) + du(j));
   }
-  return v;
+  return {v, du.lpNorm<Eigen::Infinity>()};
 }
 
 // Gauss-Newton steps with the one sensitivity (chord steps), each from the best set so far and
 // within a trust radius of a quarter of each parameter's range: a step that is no better (or
-// whose runs fail) is retried with half the radius, twice at most; a step that no halving improves
-// ends them. Far from the targets they move every target at once, where BOBYQA's first steps,
+// whose runs fail) is retried with half its largest move as the radius, twice at most; a step
+// that no retry improves ends them. Far from the targets they move every target at once, where BOBYQA's first steps,
 // sized to one tolerance, crawl (the granite's start was 14 tolerances off in E).
 void Calibration::linearised_steps(const Sensitivity& s) {
   constexpr int kSteps = 4, kHalvings = 2;
@@ -418,9 +420,11 @@ void Calibration::linearised_steps(const Sensitivity& s) {
     const Evaluation from = best_;
     bool improved = false;
     double radius = 0.25;
-    for (int h = 0; h <= kHalvings && !improved && affordable(1); ++h, radius /= 2)
-      improved =
-          evaluate({linearised_step(from, s, radius)}, "linearised").front().index == best_.index;
+    for (int h = 0; h <= kHalvings && !improved && affordable(1); ++h) {
+      const auto [values, moved] = linearised_step(from, s, radius);
+      improved = evaluate({values}, "linearised").front().index == best_.index;
+      radius = moved / 2;  // a step inside the radius would otherwise be retried unchanged
+    }
     if (!improved) return;
   }
 }
