@@ -411,8 +411,8 @@ std::pair<std::vector<double>, double> Calibration::linearised_step(const Evalua
 
 // Gauss-Newton steps with the one sensitivity (chord steps), each from the best set so far and
 // within a trust radius of a quarter of each parameter's range: a step that is no better (or
-// whose runs fail) is retried with half its largest move as the radius, twice at most; a step
-// that no retry improves ends them. Far from the targets they move every target at once, where BOBYQA's first steps,
+// whose runs fail) is retried with half the radius (half its own largest move if that is less),
+// twice at most; a step that no retry improves ends them. Far from the targets they move every target at once, where BOBYQA's first steps,
 // sized to one tolerance, crawl (the granite's start was 14 tolerances off in E).
 void Calibration::linearised_steps(const Sensitivity& s) {
   constexpr int kSteps = 4, kHalvings = 2;
@@ -423,7 +423,8 @@ void Calibration::linearised_steps(const Sensitivity& s) {
     for (int h = 0; h <= kHalvings && !improved && affordable(1); ++h) {
       const auto [values, moved] = linearised_step(from, s, radius);
       improved = evaluate({values}, "linearised").front().index == best_.index;
-      radius = moved / 2;  // a step inside the radius would otherwise be retried unchanged
+      // Half the radius, or half the step when it fits inside that (else it would be the same).
+      radius = moved > radius / 2 ? radius / 2 : moved / 2;
     }
     if (!improved) return;
   }
