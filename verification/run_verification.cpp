@@ -381,7 +381,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d checks failed; report: %s\n", failed, argv[3]);
     return failed ? 1 : 0;
   }
-  if (c1 || c2 || c3) {  // the calibrations (C1 about an hour, C2 15 and C3 35 minutes)
+  if (c1 || c2 || c3) {  // the calibrations (C1 about an hour, C2 30 and C3 35 minutes)
     std::ofstream out(argv[3]);
     write_table_head(out, "calibration (C1, C2, C3)", "--calibration-only");
     int failed = 0;

@@ -88,7 +88,7 @@ std::vector<CaseResult> b1_deformable_marble(const std::string& source_dir,
 std::vector<CaseResult> c1_marble_calibration(const std::string& source_dir,
                                               const std::string& binary,
                                               const std::filesystem::path& out);
-// C2: `vorodec calibrate models/calibrate_granite.toml` into `out` (about 15 minutes), as C1.
+// C2: `vorodec calibrate models/calibrate_granite.toml` into `out` (about 30 minutes), as C1.
 std::vector<CaseResult> c2_granite_calibration(const std::string& source_dir,
                                                const std::string& binary,
                                                const std::filesystem::path& out);
