@@ -412,8 +412,9 @@ std::pair<std::vector<double>, double> Calibration::linearised_step(const Evalua
 // Gauss-Newton steps with the one sensitivity (chord steps), each from the best set so far and
 // within a trust radius of a quarter of each parameter's range: a step that is no better (or
 // whose runs fail) is retried with half the radius (half its own largest move if that is less),
-// twice at most; a step that no retry improves ends them. Far from the targets they move every target at once, where BOBYQA's first steps,
-// sized to one tolerance, crawl (the granite's start was 14 tolerances off in E).
+// twice at most; a step that no retry improves ends them. Far from the targets they move every
+// target at once, where BOBYQA's first steps, sized to one tolerance, crawl (the granite's start
+// was 14 tolerances off in E).
 void Calibration::linearised_steps(const Sensitivity& s) {
   constexpr int kSteps = 4, kHalvings = 2;
   for (int k = 0; k < kSteps && !converged(best_); ++k) {
