@@ -8,8 +8,8 @@
 // --ladders adds the whole-model convergence ladders (about 10 minutes on one core).
 // --grains-only runs the grain-based cases only (G1, G2, B5; about 6 minutes on 2 cores).
 // --dynamics-only runs A8, A9, the quiet boundaries and the undamped assembly (about 6 minutes).
-// --calibration-only runs C1 and C2, the marble and granite calibrations from a wrong start, and C3,
-// the marble's calibration to both of its nu (about two hours on 2 cores; their folders,
+// --calibration-only runs C1 and C2, the marble and granite calibrations from a wrong start, and
+// C3, the marble's calibration to both of its nu (about two hours on 2 cores; their folders,
 // results/calibrate_marble, results/calibrate_granite and results/calibrate_marble_nu, replay when
 // run again). --granite-calibration-only runs C2 alone; --two-nu-only runs C3 and B2's first
 // loading with its set (models/ucs_marble_two_nu.toml; 2 minutes after C3 has run).
