@@ -2,7 +2,7 @@
 // Usage: vorodec_verify <source dir> <vorodec binary> <report.md> [--analytic-only] [--ladders]
 //                       [--grains-only] [--speeds-only] [--creep-only] [--corrosion-only]
 //                       [--marble-only] [--dynamics-only] [--shpb-only] [--calibration-only]
-//                       [--granite-calibration-only] [--two-nu-only]
+//                       [--granite-calibration-only] [--two-nu-only] [--marble-sets-only]
 //                       [--deformable-marble-only] [--stability-only]
 //                       [--deformable-joint-only]
 // --ladders adds the whole-model convergence ladders (about 10 minutes on one core).
@@ -12,7 +12,8 @@
 // C3, the marble's calibration to both of its nu (about two hours on 2 cores; their folders,
 // results/calibrate_marble, results/calibrate_granite and results/calibrate_marble_nu, replay when
 // run again). --granite-calibration-only runs C2 alone; --two-nu-only runs C3 and B2's first
-// loading with its set (models/ucs_marble_two_nu.toml; 2 minutes after C3 has run).
+// loading with its set (models/ucs_marble_two_nu.toml) and the hand set against it over seeds
+// 42-46 (5 minutes after C3 has run); --marble-sets-only runs that comparison alone (3 minutes).
 // --shpb-only runs A12 and the granite under impact (B5 dynamic; about 3 minutes on 2 cores).
 // --deformable-marble-only runs B1D, the deformable marble against the paper and the rigid
 //   marble, and draws verification/b1d_rigid_deformable.png (about 6 minutes on 2 cores).
@@ -287,21 +288,22 @@ int write_stability(std::ostream& out, const std::string& source_dir, const std:
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr,
-                 "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
-                 "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only] "
-                 "[--corrosion-only] [--marble-only] [--dynamics-only] [--shpb-only] "
-                 "[--calibration-only] [--granite-calibration-only] [--two-nu-only] "
-                 "[--deformable-marble-only] [--stability-only] "
-                 "[--deformable-joint-only]\n",
-                 argv[0]);
+    std::fprintf(
+        stderr,
+        "usage: %s <source dir> <vorodec binary> <report.md> [--analytic-only] "
+        "[--ladders] [--deformable-ladder] [--grains-only] [--speeds-only] [--creep-only] "
+        "[--corrosion-only] [--marble-only] [--dynamics-only] [--shpb-only] "
+        "[--calibration-only] [--granite-calibration-only] [--two-nu-only] [--marble-sets-only] "
+        "[--deformable-marble-only] [--stability-only] "
+        "[--deformable-joint-only]\n",
+        argv[0]);
     return 2;
   }
   bool analytic_only = false, model_ladders_wanted = false, deformable_ladder_wanted = false,
        grains_only = false, speeds_only = false, creep_only = false, corrosion_only = false,
        marble_only = false, dynamics_only = false, shpb_only = false, c1 = false, c2 = false,
-       c3 = false, two_nu_b2 = false, deformable_marble_only = false, stability_only = false,
-       joint_only = false;
+       c3 = false, two_nu_b2 = false, marble_sets = false, deformable_marble_only = false,
+       stability_only = false, joint_only = false;
   // Each flag and the parts it asks for.
   const std::map<std::string, std::vector<bool*>, std::less<>> options{
       {"--analytic-only", {&analytic_only}},
@@ -315,7 +317,8 @@ int main(int argc, char** argv) {
       {"--shpb-only", {&shpb_only}},
       {"--calibration-only", {&c1, &c2, &c3}},
       {"--granite-calibration-only", {&c2}},
-      {"--two-nu-only", {&c3, &two_nu_b2}},
+      {"--two-nu-only", {&c3, &two_nu_b2, &marble_sets}},
+      {"--marble-sets-only", {&marble_sets}},
       {"--marble-only", {&marble_only}},
       {"--deformable-marble-only", {&deformable_marble_only}},
       {"--stability-only", {&stability_only}},
@@ -381,7 +384,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d checks failed; report: %s\n", failed, argv[3]);
     return failed ? 1 : 0;
   }
-  if (c1 || c2 || c3) {  // the calibrations (C1 about an hour, C2 30 and C3 35 minutes)
+  if (c1 || c2 || c3 || marble_sets) {  // the calibrations (C1 about an hour, C2 30, C3 35 min)
     std::ofstream out(argv[3]);
     write_table_head(out, "calibration (C1, C2, C3)", "--calibration-only");
     int failed = 0;
@@ -393,6 +396,7 @@ int main(int argc, char** argv) {
     if (c2) add(c2_granite_calibration(argv[1], argv[2], "results/calibrate_granite"));
     if (c3) add(c3_marble_two_nu_calibration(argv[1], argv[2], "results/calibrate_marble_nu"));
     if (two_nu_b2) add(b2_marble_cyclic_two_nu(argv[1], argv[2]));
+    if (marble_sets) add(marble_sets_over_seeds(argv[1], argv[2]));
     for (const auto& r : rows) {
       failed += !r.pass();
       out << report_row(r);

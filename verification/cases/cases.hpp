@@ -107,6 +107,10 @@ std::vector<CaseResult> b2_marble_cyclic(const std::string& source_dir, const st
 std::vector<CaseResult> b2_marble_cyclic_two_nu(const std::string& source_dir,
                                                 const std::string& binary);
 std::vector<CaseResult> marble_tension(const std::string& source_dir, const std::string& binary);
+// The hand set against C3's two-nu set over seeds 42-46: UCS, E, both nu, direct and Brazilian
+// tensile strength, and the modulus in tension (30 runs, about 3 minutes on 2 cores).
+std::vector<CaseResult> marble_sets_over_seeds(const std::string& source_dir,
+                                               const std::string& binary);
 
 // Grain-based specimens: mineral area fractions of a side x side granite specimen (in-process,
 // one row per mineral); Voronoi against Trigon sub-blocks on the granite model's grains (shear
