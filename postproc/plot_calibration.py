@@ -111,9 +111,10 @@ def plot_heat_map(sens, out):
     m = np.zeros((len(targets), len(params)))
     for s in last:
         m[targets.index(s["target"]), params.index(s["parameter"])] = float(s["elasticity"])
-    fig, ax = plt.subplots(figsize=(1.6 + 1.5 * len(params), 1.2 + 0.6 * len(targets)))
+    fig, ax = plt.subplots(figsize=(2.8 + 1.1 * len(params), 1.8 + 0.5 * len(targets)))
     lim = max(1e-9, np.nanmax(np.abs(m)))
-    im = ax.imshow(m, cmap="RdBu_r", vmin=-lim, vmax=lim)
+    # Cells as wide as their labels need: square cells left most of a wide figure empty.
+    im = ax.imshow(m, cmap="RdBu_r", vmin=-lim, vmax=lim, aspect="auto")
     for i in range(len(targets)):
         for j in range(len(params)):
             ax.text(j, i, "%+.2f" % m[i, j], ha="center", va="center", fontsize=8)
@@ -131,20 +132,25 @@ def plot_micro_macro(sens, targets, out):
     params = list(dict.fromkeys(s["parameter"] for s in sens))
     last, _ = last_round(sens)
     scale_of = {t["target"]: unit(t["quantity"]) for t in targets}
-    fig, axes = plt.subplots(1, len(params), figsize=(3.9 * len(params), 4.0), squeeze=False)
+    cols = min(4, len(params))
+    nrows = (len(params) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(3.9 * cols, 4.3 * nrows), squeeze=False)
+    for ax in axes.flat[len(params):]:
+        ax.set_visible(False)
     for j, p in enumerate(params):
-        ax = axes[0][j]
+        ax = axes[j // cols][j % cols]
         mine = [s for s in last if s["parameter"] == p]
         # The target this parameter moves most (a failed moved set's nan elasticity never wins).
         target = max(mine, key=lambda s: np.nan_to_num(abs(float(s["elasticity"])), nan=-1.0))["target"]
         scale, label = scale_of[target]
-        xs = []
+        xs, ys = [], []
         for s in sens:
             if s["parameter"] != p or s["target"] != target:
                 continue
             x = [float(s["parameter_base"]), float(s["parameter_moved"])]
             y = [float(s["target_base"]) * scale, float(s["target_moved"]) * scale]
             xs += x
+            ys += y
             ax.loglog(x, y, "o-", label="round %s, from %.3g: slope %+.2f (log-log)"
                       % (s["round"], x[0], float(s["elasticity"])))
         # Three labelled ticks across the points: a short decade has no major tick, and its nine
@@ -152,6 +158,9 @@ def plot_micro_macro(sens, targets, out):
         ticks = np.geomspace(min(xs), max(xs), 3)
         ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_xticks(ticks, ["%.3g" % t for t in ticks], fontsize=7)
+        ticks = np.geomspace(min(ys), max(ys), 3)
+        ax.yaxis.set_minor_formatter(NullFormatter())
+        ax.set_yticks(ticks, ["%.3g" % t for t in ticks], fontsize=7)
         ax.set_xlabel(p, fontsize=8)
         ax.set_ylabel("%s (%s)" % (target, label))
         ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18))
