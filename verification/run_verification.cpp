@@ -11,9 +11,9 @@
 // --calibration-only runs C1 and C2, the marble and granite calibrations from a wrong start, and
 // C3, the marble's calibration to both of its nu (about two hours on 2 cores; their folders,
 // results/calibrate_marble, results/calibrate_granite and results/calibrate_marble_nu, replay when
-// run again). --granite-calibration-only runs C2 alone; --two-nu-only runs C3 and B2's first
-// loading with its set (models/ucs_marble_two_nu.toml) and the hand set against it over seeds
-// 42-46 (5 minutes after C3 has run); --marble-sets-only runs that comparison alone (3 minutes).
+// run again). --granite-calibration-only runs C2 alone; --two-nu-only runs C3, B2 with its set
+// (models/ucs_marble_two_nu.toml) and the hand set against it over seeds 42-46 (5 minutes after
+// C3 has run); --marble-sets-only runs that comparison alone (3 minutes).
 // --shpb-only runs A12 and the granite under impact (B5 dynamic; about 3 minutes on 2 cores).
 // --deformable-marble-only runs B1D, the deformable marble against the paper and the rigid
 //   marble, and draws verification/b1d_rigid_deformable.png (about 6 minutes on 2 cores).
@@ -384,7 +384,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d checks failed; report: %s\n", failed, argv[3]);
     return failed ? 1 : 0;
   }
-  if (c1 || c2 || c3 || marble_sets) {  // the calibrations (C1 about an hour, C2 30, C3 35 min)
+  if (c1 || c2 || c3 || marble_sets) {  // the calibrations (C1 about an hour, C2 and C3 30 min)
     std::ofstream out(argv[3]);
     write_table_head(out, "calibration (C1, C2, C3)", "--calibration-only");
     int failed = 0;

@@ -93,7 +93,7 @@ std::vector<CaseResult> c2_granite_calibration(const std::string& source_dir,
                                                const std::string& binary,
                                                const std::filesystem::path& out);
 // C3: `vorodec calibrate models/calibrate_marble_nu.toml` (the marble with both of its nu; about
-// 35 minutes), as C1.
+// 30 minutes), as C1.
 std::vector<CaseResult> c3_marble_two_nu_calibration(const std::string& source_dir,
                                                      const std::string& binary,
                                                      const std::filesystem::path& out);
@@ -103,7 +103,8 @@ std::vector<CaseResult> c3_marble_two_nu_calibration(const std::string& source_d
 std::vector<CaseResult> b1_marble_triaxial(const std::string& source_dir,
                                            const std::string& binary);
 std::vector<CaseResult> b2_marble_cyclic(const std::string& source_dir, const std::string& binary);
-// B2's first loading with the marble calibrated to both of its nu (models/ucs_marble_two_nu.toml).
+// B2's rows, but the half-rate ones, with the marble calibrated to both of its nu
+// (models/ucs_marble_two_nu.toml).
 std::vector<CaseResult> b2_marble_cyclic_two_nu(const std::string& source_dir,
                                                 const std::string& binary);
 std::vector<CaseResult> marble_tension(const std::string& source_dir, const std::string& binary);

@@ -201,6 +201,65 @@ std::vector<double> damage_per_cycle(const Table& h, int cycles) {
   return d;
 }
 
+// B2's rows of one cyclic run (every row's name starts with `label`): energy balance, the first
+// loading, the trends over the cycles, the cracks' orientation, damage per cycle, the ramp.
+std::vector<CaseResult> b2_cycle_rows(const ModelRun& run, const std::string& label,
+                                      const std::string& settings, double rate) {
+  const Table cyc = read_table(run.out / "cycles.csv");
+  const Table h = read_table(run.out / "history.csv");
+  const std::string b2 = paper + ", B2";
+  std::vector<CaseResult> r;
+  r.push_back(energy_balance("B2", run, settings));
+  r.back().name = label + r.back().name;
+  r.push_back(relative("B2", label + "secant modulus of the first loading (Pa)",
+                       b2 + ": starts at about 30 GPa", 30e9, cyc.number(0, "secant_modulus_Pa"),
+                       0.10, settings, run.seconds));
+  r.push_back(relative("B2", label + "generalized Poisson's ratio of the first loading",
+                       b2 + ": about 0.18 at the first loading", 0.18,
+                       cyc.number(0, "poisson_ratio"), 0.10, settings, run.seconds));
+  // Trends across the cycles that completed (a stalled cycle is the last).
+  int rises = 0, residual_falls = 0;
+  for (std::size_t k = 1; k < cyc.rows.size(); ++k) {
+    rises += cyc.number(k, "secant_modulus_Pa") > 1.01 * cyc.number(k - 1, "secant_modulus_Pa");
+    residual_falls += cyc.number(k, "residual_strain") < cyc.number(k - 1, "residual_strain");
+  }
+  r.push_back({"B2", label + "cycles whose secant modulus rises by > 1 % over the previous one",
+               b2 + ": the simulated secant modulus falls with the cycles", 0, double(rises),
+               double(rises), 0, settings, run.seconds});
+  r.push_back({"B2", label + "cycles whose residual strain falls below the previous one",
+               b2 + ": residual strain grows with the upper stress ratio", 0,
+               double(residual_falls), double(residual_falls), 0, settings, run.seconds});
+  // Cracks below 80 % of the peak lie mostly at 70-110 degrees.
+  double t80 = std::nan("");
+  for (std::size_t i = 0; i < h.rows.size() && std::isnan(t80); ++i)
+    if (h.number(i, "axial_stress") >= 0.8 * reference_ucs) t80 = h.number(i, "time");
+  const double steep = steep_crack_fraction(run.out / "cracks.csv", t80);
+  r.push_back({"B2",
+               label + "share of crack length at 70-110 deg before 80 % of peak (lower bound 0.5)",
+               b2 + ": failed contacts lie mostly at 70-110 deg below 80 % of peak", 0.5, steep,
+               std::max(0.0, 0.5 - steep), 0, settings, run.seconds});
+  // Damage density per cycle against the upper stress ratio: D = R a^s.
+  std::vector<double> la, ld;
+  const auto gained = damage_per_cycle(h, static_cast<int>(cyc.rows.size()));
+  for (std::size_t k = 0; k < gained.size(); ++k)
+    if (gained[k] > 0) {
+      la.push_back(std::log(cyc.number(k, "upper_reached_Pa") / reference_ucs));
+      ld.push_back(std::log(gained[k]));
+    }
+  const Line fit = fit_line(la, ld);
+  r.push_back({"B2",
+               label + fmt::format("damage density per cycle D = R a^s: R^2 of the fit over {} "
+                                   "cycles (R = {:.3g}, s = {:.3g}; lower bound 0.9)",
+                                   la.size(), std::exp(fit.intercept), fit.slope),
+               b2 + ": exponential growth with the upper stress ratio (form, not constants)", 0.9,
+               fit.r2, std::max(0.0, 0.9 - fit.r2), 0, settings, run.seconds});
+  r.push_back({"B2", label + "worst deviation of the unloading stress from its ramp (/ span)",
+               "stress-rate control: sigma = sigma_upper - rate t", 0,
+               worst_ramp_deviation(h, rate, 0.0), worst_ramp_deviation(h, rate, 0.0), 0.02,
+               settings, run.seconds});
+  return r;
+}
+
 }  // namespace
 
 std::vector<CaseResult> b2_marble_cyclic(const std::string& source_dir, const std::string& binary) {
@@ -218,58 +277,10 @@ std::vector<CaseResult> b2_marble_cyclic(const std::string& source_dir, const st
     other.join();
   }
   const Table cyc = read_table(out / "cycles.csv");
-  const Table h = read_table(out / "history.csv");
   const std::string settings = fmt::format(
       "models/cyclic_marble.toml: 5 cycles to +20 % of 47.9 MPa, unloading 1.5e9 Pa/s; exit {}",
       run.exit_code);
-  const std::string b2 = paper + ", B2";
-  std::vector<CaseResult> r;
-  r.push_back(energy_balance("B2", run, settings));
-  r.push_back(relative("B2", "secant modulus of the first loading (Pa)",
-                       b2 + ": starts at about 30 GPa", 30e9, cyc.number(0, "secant_modulus_Pa"),
-                       0.10, settings, run.seconds));
-  r.push_back(relative("B2", "generalized Poisson's ratio of the first loading",
-                       b2 + ": about 0.18 at the first loading", 0.18,
-                       cyc.number(0, "poisson_ratio"), 0.10, settings, run.seconds));
-  // Trends across the cycles that completed (a stalled cycle is the last).
-  int rises = 0, residual_falls = 0;
-  for (std::size_t k = 1; k < cyc.rows.size(); ++k) {
-    rises += cyc.number(k, "secant_modulus_Pa") > 1.01 * cyc.number(k - 1, "secant_modulus_Pa");
-    residual_falls += cyc.number(k, "residual_strain") < cyc.number(k - 1, "residual_strain");
-  }
-  r.push_back({"B2", "cycles whose secant modulus rises by > 1 % over the previous one",
-               b2 + ": the simulated secant modulus falls with the cycles", 0, double(rises),
-               double(rises), 0, settings, run.seconds});
-  r.push_back({"B2", "cycles whose residual strain falls below the previous one",
-               b2 + ": residual strain grows with the upper stress ratio", 0,
-               double(residual_falls), double(residual_falls), 0, settings, run.seconds});
-  // Cracks below 80 % of the peak lie mostly at 70-110 degrees.
-  double t80 = std::nan("");
-  for (std::size_t i = 0; i < h.rows.size() && std::isnan(t80); ++i)
-    if (h.number(i, "axial_stress") >= 0.8 * reference_ucs) t80 = h.number(i, "time");
-  const double steep = steep_crack_fraction(out / "cracks.csv", t80);
-  r.push_back({"B2", "share of crack length at 70-110 deg before 80 % of peak (lower bound 0.5)",
-               b2 + ": failed contacts lie mostly at 70-110 deg below 80 % of peak", 0.5, steep,
-               std::max(0.0, 0.5 - steep), 0, settings, run.seconds});
-  // Damage density per cycle against the upper stress ratio: D = R a^s.
-  std::vector<double> la, ld;
-  const auto gained = damage_per_cycle(h, static_cast<int>(cyc.rows.size()));
-  for (std::size_t k = 0; k < gained.size(); ++k)
-    if (gained[k] > 0) {
-      la.push_back(std::log(cyc.number(k, "upper_reached_Pa") / reference_ucs));
-      ld.push_back(std::log(gained[k]));
-    }
-  const Line fit = fit_line(la, ld);
-  r.push_back({"B2",
-               fmt::format("damage density per cycle D = R a^s: R^2 of the fit over {} cycles "
-                           "(R = {:.3g}, s = {:.3g}; lower bound 0.9)",
-                           la.size(), std::exp(fit.intercept), fit.slope),
-               b2 + ": exponential growth with the upper stress ratio (form, not constants)", 0.9,
-               fit.r2, std::max(0.0, 0.9 - fit.r2), 0, settings, run.seconds});
-  r.push_back({"B2", "worst deviation of the unloading stress from its ramp (/ span)",
-               "stress-rate control: sigma = sigma_upper - rate t", 0,
-               worst_ramp_deviation(h, rate, 0.0), worst_ramp_deviation(h, rate, 0.0), 0.02,
-               settings, run.seconds});
+  std::vector<CaseResult> r = b2_cycle_rows(run, "", settings, rate);
   // The unloading rate must not decide the answer: half the rate as the reference.
   const Table cyc_half = read_table(out.parent_path() / "b2_half/cycles.csv");
   const std::size_t last = std::min(cyc.rows.size(), cyc_half.rows.size());
@@ -296,19 +307,11 @@ std::vector<CaseResult> b2_marble_cyclic_two_nu(const std::string& source_dir,
   const fs::path out = fs::temp_directory_path() / "vorodec_verification/b2_two_nu";
   const ModelRun run = run_model(binary, models / "cyclic_marble.toml", out,
                                  set_arguments(models / "ucs_marble_two_nu.toml"));
-  const Table cyc = read_table(out / "cycles.csv");
   const std::string settings = fmt::format(
       "models/cyclic_marble.toml with the set of models/ucs_marble_two_nu.toml (C3); {} cycles; "
       "exit {}",
-      cyc.rows.size(), run.exit_code);
-  const std::string b2 = paper + ", B2";
-  return {relative("B2", "two-nu set: secant modulus of the first loading (Pa)",
-                   b2 + ": starts at about 30 GPa", 30e9, cyc.number(0, "secant_modulus_Pa"),
-                   0.10, settings, run.seconds),
-          relative("B2", "two-nu set: generalized Poisson's ratio of the first loading",
-                   b2 + ": about 0.18 at the first loading", 0.18, cyc.number(0, "poisson_ratio"),
-                   0.10, settings, run.seconds),
-          energy_balance("B2", run, settings + "; two-nu set")};
+      read_table(out / "cycles.csv").rows.size(), run.exit_code);
+  return b2_cycle_rows(run, "two-nu set: ", settings, 1.5e9);
 }
 
 std::vector<CaseResult> marble_tension(const std::string& source_dir, const std::string& binary) {
