@@ -53,21 +53,6 @@ Line fit_line(const std::vector<double>& x, const std::vector<double>& y) {
   return l;
 }
 
-CaseResult relative(std::string id, std::string name, std::string reference, double expected,
-                    double measured, double tolerance, std::string settings, double seconds) {
-  CaseResult c{std::move(id),
-               std::move(name),
-               std::move(reference),
-               expected,
-               measured,
-               std::abs(measured - expected) / std::abs(expected),
-               tolerance,
-               std::move(settings),
-               seconds};
-  if (!std::isfinite(c.error)) c.error = 1.0;
-  return c;
-}
-
 }  // namespace
 
 std::vector<CaseResult> b1_marble_triaxial(const std::string& source_dir,

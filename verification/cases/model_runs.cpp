@@ -54,6 +54,21 @@ std::string set_arguments(const std::filesystem::path& model) {
   return args;
 }
 
+CaseResult relative(std::string id, std::string name, std::string reference, double expected,
+                    double measured, double tolerance, std::string settings, double seconds) {
+  CaseResult c{std::move(id),
+               std::move(name),
+               std::move(reference),
+               expected,
+               measured,
+               std::abs(measured - expected) / std::abs(expected),
+               tolerance,
+               std::move(settings),
+               seconds};
+  if (!std::isfinite(c.error)) c.error = 1.0;
+  return c;
+}
+
 double json_number(const std::string& json, const std::string& key) {
   const std::string tag = "\"" + key + "\": ";
   const auto pos = json.find(tag);

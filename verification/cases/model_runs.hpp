@@ -36,6 +36,9 @@ struct Table {
 Table read_table(const std::filesystem::path& csv);
 
 struct CaseResult;
+// A row judged by its relative error |measured - expected| / |expected| (1 when not finite).
+CaseResult relative(std::string id, std::string name, std::string reference, double expected,
+                    double measured, double tolerance, std::string settings, double seconds);
 // Energy balance at the end of a run (PHYSICS section 10), from the last row of its history:
 // (boundary work - strain - kinetic - damping - friction - breakage) / boundary work, judged at
 // 1 %.
