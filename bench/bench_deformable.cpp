@@ -5,7 +5,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include "vorodec/app/simulation.hpp"
+#include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 #include "vorodec/model/zoning.hpp"
 
@@ -21,17 +21,17 @@ io::ModelConfig model(std::int64_t zone_um) {
   return cfg;
 }
 
-app::PreparedModel loaded(benchmark::State& state) {
+run::PreparedModel loaded(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   const io::ModelConfig cfg = model(state.range(0));
-  app::PreparedModel pm = app::prepare_model(cfg, app::make_specimen(cfg));
+  run::PreparedModel pm = run::prepare_model(cfg, run::make_specimen(cfg));
   const loading::SpecimenBoundary boundary(*pm.model);
   boundary.set_platen_velocity(*pm.model, 0.05);
   for (int i = 0; i < 300; ++i) pm.solver->step();  // load the contacts first
   return pm;
 }
 
-void counters(benchmark::State& state, const app::PreparedModel& pm, double per_step) {
+void counters(benchmark::State& state, const run::PreparedModel& pm, double per_step) {
   const double threads = static_cast<double>(state.range(1));
   const double steps = static_cast<double>(state.iterations());
   state.counters["zones"] = static_cast<double>(pm.model->zoning.zones.size());
@@ -43,14 +43,14 @@ void counters(benchmark::State& state, const app::PreparedModel& pm, double per_
 
 // One whole explicit step (detection amortised). Rigid (zone size 0): the reference.
 void BM_Step(benchmark::State& state) {
-  app::PreparedModel pm = loaded(state);
+  run::PreparedModel pm = loaded(state);
   for (auto _ : state) pm.solver->step();
   counters(state, pm, static_cast<double>(pm.model->zoning.zones.size()));
 }
 
 // The zone kernel alone: strains, stresses and forces of every zone, gathered per gridpoint.
 void BM_ZoneForces(benchmark::State& state) {
-  app::PreparedModel pm = loaded(state);
+  run::PreparedModel pm = loaded(state);
   std::vector<double> fx, fy;
   for (auto _ : state) {
     model::zone_forces(pm.model->zoning, fx, fy);

@@ -3,7 +3,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include "vorodec/app/simulation.hpp"
+#include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 #include "vorodec/model/build.hpp"
 
@@ -15,7 +15,7 @@ void BM_DefaultModelStepLawGroups(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   const io::ModelConfig cfg =
       io::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
-  const auto tess = app::make_specimen(cfg);
+  const auto tess = run::make_specimen(cfg);
   model::Model m = model::build_model(tess, {cfg.density, cfg.rounding_length, true});
   std::vector<std::unique_ptr<laws::LawGroup>> groups;
   for (const io::LawChoice* choice : {&cfg.joints, &cfg.platens})
@@ -25,7 +25,7 @@ void BM_DefaultModelStepLawGroups(benchmark::State& state) {
                          ->make({{"jkn", model::Distribution::constant(1e13)},
                                  {"jks", model::Distribution::constant(1e13)}},
                                 cfg.seed));
-  solver::LawTable table;  // as app::prepare_model: specimen-specimen 0, specimen-platen 1
+  solver::LawTable table;  // as run::prepare_model: specimen-specimen 0, specimen-platen 1
   for (std::size_t p : {1u, 2u}) table.law[0][p] = table.law[p][0] = 1;
   table.law[0][0] = 0;
   solver::SolverSettings settings = cfg.solver;

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "vorodec/app/simulation.hpp"
 #include "vorodec/checkpoint/checkpoint_file.hpp"
+#include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 
 using namespace vorodec;
@@ -33,8 +33,8 @@ io::ModelConfig scaled_model(int blocks) {
 
 void run_steps(benchmark::State& state, const io::ModelConfig& cfg) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
-  const auto tess = app::make_specimen(cfg);
-  app::PreparedModel pm = app::prepare_model(cfg, tess);
+  const auto tess = run::make_specimen(cfg);
+  run::PreparedModel pm = run::prepare_model(cfg, tess);
   const loading::SpecimenBoundary boundary(*pm.model);
   boundary.set_platen_velocity(*pm.model, 0.05);
   for (int i = 0; i < 300; ++i) pm.solver->step();  // load the contacts first
@@ -82,12 +82,12 @@ void BM_CopiesStep(benchmark::State& state) {
   const bool distinct = state.range(1) != 0;
   const auto visit = static_cast<int>(state.range(2));
   omp_set_num_threads(1);
-  std::vector<app::PreparedModel> models;
+  std::vector<run::PreparedModel> models;
   for (std::size_t k = 0; k < copies; ++k) {
     io::ModelConfig cfg = scaled_model(1000);
     cfg.seed = cfg.tessellation.seed = distinct ? k + 1 : 1;
-    const auto tess = app::make_specimen(cfg);
-    models.push_back(app::prepare_model(cfg, tess));
+    const auto tess = run::make_specimen(cfg);
+    models.push_back(run::prepare_model(cfg, tess));
     loading::SpecimenBoundary(*models.back().model).set_platen_velocity(*models.back().model, 0.05);
     for (int i = 0; i < 300; ++i) models.back().solver->step();
   }
@@ -108,8 +108,8 @@ void BM_CopiesStep(benchmark::State& state) {
 // the outputs' few values) archived and written to disk (temporary name, fsync, rename).
 void BM_CheckpointWrite(benchmark::State& state) {
   const io::ModelConfig cfg = scaled_model(static_cast<int>(state.range(0)));
-  const auto tess = app::make_specimen(cfg);
-  app::PreparedModel pm = app::prepare_model(cfg, tess);
+  const auto tess = run::make_specimen(cfg);
+  run::PreparedModel pm = run::prepare_model(cfg, tess);
   const loading::SpecimenBoundary boundary(*pm.model);
   boundary.set_platen_velocity(*pm.model, 0.05);
   for (int i = 0; i < 300; ++i) pm.solver->step();

@@ -8,6 +8,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
   # Checkpoints: cereal binary archives (header-only), zlib's CRC-32.
   libcereal-dev zlib1g-dev
+  # JSON: summary.json and every JSON the project writes or reads (header-only).
+  nlohmann-json3-dev
   # Calibration: NLopt's derivative-free optimisers (BOBYQA).
   libnlopt-cxx-dev
   libvtk9-dev python3-vtk9 python3-matplotlib python3-numpy

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "model_runs.hpp"
+
 namespace vorodec::testing {
 
 namespace fs = std::filesystem;
@@ -76,11 +78,7 @@ inline std::string slurp(const fs::path& f) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-// A number in summary.json: the value after "key":.
-inline double json_number(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\":");
-  if (at == std::string::npos) return std::nan("");
-  return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
-}
+// A number in summary.json, a nested one by its own name (verification/cases/model_runs.hpp).
+using verification::json_number;
 
 }  // namespace vorodec::testing

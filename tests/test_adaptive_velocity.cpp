@@ -11,7 +11,7 @@
 #include <string>
 
 #include "run_support.hpp"
-#include "vorodec/io/model_file.hpp"
+#include "vorodec/input/model_file.hpp"
 #include "vorodec/loading/stage_control.hpp"
 
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "run_support.hpp"
-#include "vorodec/app/simulation.hpp"
+#include "vorodec/engine/prepared_model.hpp"
 
 using namespace vorodec;
 using namespace vorodec::testing;
@@ -119,8 +119,8 @@ TEST(Creep, AMixFractionOfJointsTakesTheSecondLawWholeJointsAtATime) {
   for (const char* k : {"tension", "cohesion", "friction", "dilation"})
     mc.params[k] = model::Distribution::constant(k[0] == 'f' ? 30.0 : 1e7);
   cfg.joint_mix = io::ModelConfig::JointMix{0.3, mc};
-  const geometry::Tessellation t = app::make_specimen(cfg);
-  const app::PreparedModel p = app::prepare_model(cfg, t);
+  const geometry::Tessellation t = run::make_specimen(cfg);
+  const run::PreparedModel p = run::prepare_model(cfg, t);
   std::map<std::pair<int, int>, std::set<int>> laws_of_joint;
   for (const model::Contact& c : p.model->contacts)
     if (c.law != 1) laws_of_joint[{std::min(c.a, c.b), std::max(c.a, c.b)}].insert(c.law);

@@ -10,9 +10,9 @@
 #include <utility>
 
 #include "run_support.hpp"
-#include "vorodec/app/simulation.hpp"
+#include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/geometry/grains.hpp"
-#include "vorodec/io/model_file.hpp"
+#include "vorodec/input/model_file.hpp"
 #include "vorodec/measure/grain_cracks.hpp"
 
 namespace {
@@ -131,8 +131,8 @@ TEST(Grains, TrigonSubBlocksAreTrianglesSharingEveryGrainBoundaryVertex) {
 // intergranular one, and quartz-feldspar boundaries their own pair law.
 TEST(Grains, ContactsKnowWhetherTheyCrossAGrainBoundary) {
   const io::ModelConfig cfg = io::read_model_file(kSmall);
-  const geometry::Tessellation t = app::make_specimen(cfg);
-  const app::PreparedModel p = app::prepare_model(cfg, t);
+  const geometry::Tessellation t = run::make_specimen(cfg);
+  const run::PreparedModel p = run::prepare_model(cfg, t);
   std::map<int, std::size_t> per_law;
   for (const model::Contact& c : p.model->contacts) {
     const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
@@ -187,7 +187,7 @@ TEST(Grains, GrainFileGivesTheTracedGrainsAndTheirMinerals) {
         "g4,feldspar,0.005,0.01\n");
   const fs::path model = write(dir / "model.toml", grain_file_model("grains.csv"));
   const io::ModelConfig cfg = io::read_model_file(model);
-  const geometry::Tessellation t = app::make_specimen(cfg);
+  const geometry::Tessellation t = run::make_specimen(cfg);
   EXPECT_EQ(t.grain_mineral, (std::vector<std::int32_t>{0, 1, 1, 0}));
   ASSERT_EQ(t.mineral_area.size(), 2u);
   EXPECT_NEAR(t.mineral_area[0], 50e-6, 1e-12);  // m^2
@@ -303,8 +303,8 @@ TEST(Grains, DeformableGrainsTakeTheirMineralsElasticity) {
   const fs::path dir = vorodec::testing::out_dir("deformable_grains");
   const fs::path model = write(dir / "model.toml", deformable_grains_model());
   const io::ModelConfig cfg = io::read_model_file(model);
-  const geometry::Tessellation t = app::make_specimen(cfg);
-  const app::PreparedModel p = app::prepare_model(cfg, t);
+  const geometry::Tessellation t = run::make_specimen(cfg);
+  const run::PreparedModel p = run::prepare_model(cfg, t);
   const model::Zoning& z = p.model->zoning;
   ASSERT_FALSE(z.empty());
   std::size_t per_mineral[2] = {0, 0};

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "vorodec/io/model_file.hpp"
+#include "vorodec/input/model_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace vorodec;

@@ -226,3 +226,17 @@ TEST(StressCorrosion, NothingCorrodesBelowTheActivationThresholds) {
   EXPECT_EQ(json_value(json, "corrosion_time_s"), 0.0);
   EXPECT_EQ(json_value(json, "corrosion_steps"), 0.0);
 }
+
+// Corrosion degrades what a law offers as a degradable bond; Burger's contacts offer none (their
+// strength sits behind Maxwell and Kelvin springs the layers have no reading of), so a corrosion
+// stage on them is refused with that reason, not run on a law it cannot weaken.
+TEST(StressCorrosion, CorrosionOfBurgersContactsIsRefusedWithItsReason) {
+  const run::Outcome o = run::run_capture(
+      "check " + kSmall.string() +
+      " --set 'joints.transgranular={law=\"burgers\", kmn=4e13, kms=1.6e13, cmn=4e17, "
+      "cms=1.6e17, kkn=8e13, kks=3.2e13, ckn=8e15, cks=3.2e15, tension=16e6, cohesion=32e6, "
+      "friction=35}'");
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find("law 'burgers' has none"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("transgranular"), std::string::npos) << o.output;
+}

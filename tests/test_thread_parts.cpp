@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "vorodec/app/simulation.hpp"
+#include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 
 using namespace vorodec;
@@ -29,8 +29,8 @@ Snapshot run_with_parts(int parts) {
   cfg.tessellation.block_count = 600;
   cfg.tessellation.outline.width *= 2.0;
   cfg.tessellation.outline.height *= 2.0;
-  const auto specimen = app::make_specimen(cfg);
-  app::PreparedModel pm = app::prepare_model(cfg, specimen);
+  const auto specimen = run::make_specimen(cfg);
+  run::PreparedModel pm = run::prepare_model(cfg, specimen);
   const loading::SpecimenBoundary boundary(*pm.model);
   boundary.set_platen_velocity(*pm.model, 0.05);
   for (int i = 0; i < 400; ++i) pm.solver->step();

@@ -9,7 +9,7 @@
 #include <set>
 #include <string_view>
 
-#include "vorodec/io/model_file.hpp"
+#include "vorodec/io/input_error.hpp"
 
 namespace vorodec::io {
 namespace {

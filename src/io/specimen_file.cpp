@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "vorodec/io/model_file.hpp"
+#include "vorodec/io/input_error.hpp"
 
 namespace vorodec::io {
 

@@ -79,8 +79,12 @@ const LawInfo burgers_info{
     Burgers::name,
     "Burger's creep (Kelvin + Maxwell in series, normal and shear) with the Mohr-Coulomb "
     "strength layer",
-    burgers_params, [](const LawParams& p, std::uint64_t seed) -> std::unique_ptr<LawGroup> {
+    burgers_params,
+    [](const LawParams& p, std::uint64_t seed) -> std::unique_ptr<LawGroup> {
       return std::make_unique<LawGroupOf<Burgers>>(p, seed);
+    },
+    [](const LawParams& p) {
+      return NominalStiffness{mean_of(p, "kmn"), mean_of(p, "kms")};
     }};
 
 }  // namespace vorodec::laws

@@ -15,9 +15,13 @@ constexpr ParamSpec linear_elastic_params[] = {
 
 extern const LawInfo linear_elastic_info;
 const LawInfo linear_elastic_info{
-    LinearElastic::name, "linear normal and shear springs without strength (never fail)",
-    linear_elastic_params, [](const LawParams& p, std::uint64_t seed) -> std::unique_ptr<LawGroup> {
+    LinearElastic::name, "Linear normal and shear springs without strength (never fail)",
+    linear_elastic_params,
+    [](const LawParams& p, std::uint64_t seed) -> std::unique_ptr<LawGroup> {
       return std::make_unique<LawGroupOf<LinearElastic>>(p, seed);
+    },
+    [](const LawParams& p) {
+      return NominalStiffness{mean_of(p, "jkn"), mean_of(p, "jks")};
     }};
 
 }  // namespace vorodec::laws

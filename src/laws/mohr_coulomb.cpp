@@ -48,8 +48,12 @@ extern const LawInfo mohr_coulomb_info;
 const LawInfo mohr_coulomb_info{
     MohrCoulomb::name,
     "Coulomb slip with tension cut-off, cohesion, dilation and residual friction",
-    mohr_coulomb_params, [](const LawParams& p, std::uint64_t seed) -> std::unique_ptr<LawGroup> {
+    mohr_coulomb_params,
+    [](const LawParams& p, std::uint64_t seed) -> std::unique_ptr<LawGroup> {
       return std::make_unique<LawGroupOf<MohrCoulomb>>(p, seed);
+    },
+    [](const LawParams& p) {
+      return NominalStiffness{mean_of(p, "jkn"), mean_of(p, "jks")};
     }};
 
 }  // namespace vorodec::laws

@@ -95,16 +95,15 @@ std::vector<CaseResult> c1_marble_calibration(const std::string& source_dir,
                                               const std::string& binary, const fs::path& out) {
   return calibration_rows(
       source_dir, binary, out,
-      {"C1", "calibrate_marble.toml", "marble", "tests at 0 and 10 MPa", "paper, Table 1",
-       "paper's envelope (0-20 MPa)", "every parameter x2 or /2", 3600});
+      {"C1", "calibrate_marble.toml", "marble", "tests at 0 and 10 MPa", "[Yu2023], Table 1",
+       "[Yu2023] envelope (0-20 MPa)", "every parameter x2 or /2", 3600});
 }
 
 std::vector<CaseResult> c2_granite_calibration(const std::string& source_dir,
                                                const std::string& binary, const fs::path& out) {
-  return calibration_rows(
-      source_dir, binary, out,
-      {"C2", "calibrate_granite.toml", "granite", "UCS and direct tension",
-       "SHPB granite paper, static tests", "-", "every parameter x2 or /2", 7200});
+  return calibration_rows(source_dir, binary, out,
+                          {"C2", "calibrate_granite.toml", "granite", "UCS and direct tension",
+                           "[Li2018], static tests", "-", "every parameter x2 or /2", 7200});
 }
 
 std::vector<CaseResult> c3_marble_two_nu_calibration(const std::string& source_dir,
@@ -113,8 +112,8 @@ std::vector<CaseResult> c3_marble_two_nu_calibration(const std::string& source_d
   return calibration_rows(
       source_dir, binary, out,
       {"C3", "calibrate_marble_nu.toml", "marble, both nu",
-       "tests at 0 and 10 MPa and in direct tension",
-       "paper, Table 1; cyclic paper's first loading (nu0)", "paper's envelope (0-20 MPa)",
+       "tests at 0 and 10 MPa and in direct tension", "[Yu2023], Table 1 and first loading (nu0)",
+       "[Yu2023] envelope (0-20 MPa)",
        "the first (one-shape) result with the tension's Weibull shape at 4", 3600});
 }
 

@@ -44,7 +44,7 @@ CaseResult a10_burgers_creep(bool shear);
 // corrosion driver's clock with n_c (fast: part of the unit tests too): its time to failure (s)
 // against the quadrature; infinity where it never fails.
 double a11_quadrature(bool bonded_length, double s);
-// frozen: POT07's estimate and step, the rate frozen at the step's start.
+// frozen: [Potyondy2007]'s estimate and step, the rate frozen at the step's start.
 double a11_stepped(bool bonded_length, double s, double n_c, bool frozen);
 CaseResult a11_stress_corrosion(bool bonded_length, double s, double n_c);
 
@@ -115,7 +115,7 @@ std::vector<CaseResult> marble_sets_over_seeds(const std::string& source_dir,
 
 // Grain-based specimens: mineral area fractions of a side x side granite specimen (in-process,
 // one row per mineral); Voronoi against Trigon sub-blocks on the granite model's grains (shear
-// share of cracks, informational); the granite statics of VERIFICATION.md B5 (model runs).
+// share of cracks, informational); the granite statics of [Li2018] (model runs).
 std::vector<CaseResult> g1_mineral_fractions(double side, double grain_size);
 std::vector<CaseResult> g2_voronoi_vs_trigon(const std::string& source_dir,
                                              const std::string& binary);
@@ -174,7 +174,7 @@ std::vector<Ladder> analytic_ladders();  // A3 period and A8 damping against the
 // A10 displacement against the time step, from the consistent start (second order) and from a
 // force stepped up from zero (first order).
 std::vector<Ladder> a10_ladders();
-// A11 with POT07's frozen-rate estimate: the failure time's error against n_c (strength
+// A11 with [Potyondy2007]'s frozen-rate estimate: the failure time's error against n_c (strength
 // degradation, s = 0.7; the held integration is exact at any n_c).
 Ladder a11_frozen_ladder();
 // The default model (models/ucs_marble.toml), one thread: UCS and E against the platen speed and

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../../src/app/corrosion_control.hpp"
+#include "../../src/drivers/corrosion_mode.hpp"
 #include "cases.hpp"
 #include "vorodec/laws/stress_corrosion.hpp"
 
@@ -42,7 +42,7 @@ double a11_quadrature(bool bonded_length, double s) {
 }
 
 double a11_stepped(bool bonded_length, double s, double n_c, bool frozen) {
-  app::CorrosionClock clock(n_c);
+  run::CorrosionClock clock(n_c);
   const laws::BondStrength strength{sigma_t, 1e300, 0.0};
   const laws::InitialStrength p0{sigma_t, 1e300, 0.0};
   const laws::ContactStress st{s * sigma_t, 0.0};
@@ -95,8 +95,8 @@ CaseResult a11_stress_corrosion(bool bonded_length, double s, double n_c) {
 
 Ladder a11_frozen_ladder() {
   Ladder l{
-      "A11 grain-boundary contact at s = 0.7, POT07's frozen-rate estimate: time to failure "
-      "against n_c",
+      "A11 grain-boundary contact at s = 0.7, the frozen-rate estimate of [Potyondy2007]: time "
+      "to failure against n_c",
       "1 / n_c (steps_per_failure 1 ... 256)",
       "time to failure (s)",
       "quadrature t_f = 1 / beta3 int exp(-beta4 s / lambda) dlambda",

@@ -1,5 +1,5 @@
 // A10: one Burger's contact under a constant force against the analytic creep curve
-// u(t) = F/Km + F t/Cm + F/Kk (1 - exp(-Kk t/Ck)) (PHYSICS 12), normal and shear.
+// u(t) = F/Km + F t/Cm + F/Kk (1 - exp(-Kk t/Ck)) (docs/theory.md), normal and shear.
 #include <chrono>
 #include <cmath>
 
@@ -20,7 +20,7 @@ constexpr double default_dt = 1e2;  // s, tau_k / 100
 
 Burgers::Props contact() {
   // Per unit length, sandstone-like: Kmn 2e13 Pa/m, Cmn 2e18 Pa s/m (Cm/Km = 1e5 s), Kkn 5e13
-  // Pa/m, Ckn 5e17 Pa s/m; shear the same (paper 001 sets the ratios to 1).
+  // Pa/m, Ckn 5e17 Pa s/m; shear the same ([Guo2020] sets the ratios to 1).
   const laws::BurgersChain e{2e13 * L, 2e18 * L, 5e13 * L, 5e17 * L};
   return {e, e, {1e300, 1e300, 0.6, 0.6}, 1.0};
 }

@@ -1,4 +1,4 @@
-// B4: the hard-sandstone creep study (paper 001; VERIFICATION.md B4): the short-term triaxial
+// B4: the hard-sandstone creep study ([Guo2020]): the short-term triaxial
 // test, the multi-step creep against the paper's macro Burger's fits (Table 3), one-step against
 // multi-step at 190 MPa, creep failure with the Maxwell dashpot lowered as the paper did, and the
 // end-of-stage strains against the creep step.
@@ -50,7 +50,7 @@ StageCurve stage_curve(const Table& h, const std::string& stage) {
   return c;
 }
 
-// Least-squares macro Burger's model (paper 001, eq. 17) for each retardation time of a log
+// Least-squares macro Burger's model ([Guo2020], eq. 17) for each retardation time of a log
 // grid: linear in 1/E1, 1/eta1, 1/E2, solved by a QR factorisation (modified Gram-Schmidt) of
 // the three columns, which are nearly parallel where the retardation time is short.
 BurgersFit fit(const StageCurve& c) {
@@ -136,7 +136,7 @@ std::string factor_args(double f) {
 CreepVerification b4_sandstone(const std::string& source_dir, const std::string& binary) {
   const auto dir = std::filesystem::path(source_dir) / "models";
   const auto base = std::filesystem::temp_directory_path() / "vorodec_verification";
-  const std::string paper = "hard sandstone creep (paper 001; VERIFICATION.md B4)";
+  const std::string paper = "hard sandstone creep [Guo2020]";
   CreepVerification out;
   auto& rows = out.rows;
   const auto add = [&](std::string name, std::string ref, double expected, double measured,
@@ -239,9 +239,9 @@ CreepVerification b4_sandstone(const std::string& source_dir, const std::string&
     return (c.strain.back() - c.strain[i]) / (c.strain.back() - c.strain.front());
   };
   add("190 MPa one-step, reading (a) (Burger's + MC layer on every joint): creep strain",
-      "paper 001, Table 3 fit at 190 MPa (4 d)", table3[1].strain(4) - table3[1].strain(0),
+      "[Guo2020], Table 3 fit at 190 MPa (4 d)", table3[1].strain(4) - table3[1].strain(0),
       creep_of(a190), 0, one, "models/creep_sandstone_190.toml", true);
-  add("190 MPa one-step, reading (b): creep strain", "paper 001, Table 3 fit at 190 MPa (4 d)",
+  add("190 MPa one-step, reading (b): creep strain", "[Guo2020], Table 3 fit at 190 MPa (4 d)",
       table3[1].strain(4) - table3[1].strain(0), creep_of(b190), 0, mixed, mix_set, true);
   add("reading (a): share of the stage's creep in its second half (secondary creep: ~0.5)",
       "derived (Table 3 fit at 190 MPa: 0.47)", 0, late_share(a190), 0, one,

@@ -35,8 +35,7 @@ std::vector<CaseResult> b1_deformable_marble(const std::string& source_dir,
   const ModelRun rigid = run_model(binary, models / "ucs_marble.toml", out / "b1d_rigid");
   const ModelRun zoned =
       run_model(binary, models / "ucs_deformable_marble.toml", out / "b1d_deformable");
-  const std::string paper =
-      "marble, UDEC Voronoi (variable-amplitude cyclic loading paper, Rock Mech Rock Eng), Table 1";
+  const std::string paper = "marble, UDEC Voronoi [Yu2023], Table 1";
   const std::string settings =
       "models/ucs_deformable_marble.toml: 1302 blocks, 1 mm zones, blocks E 70 GPa";
   std::vector<CaseResult> r;

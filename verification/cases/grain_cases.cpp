@@ -115,7 +115,7 @@ std::vector<CaseResult> b5_granite(const std::string& source_dir, const std::str
   const auto base = std::filesystem::temp_directory_path() / "vorodec_verification";
   const ModelRun u = run_model(binary, dir / "ucs_granite.toml", base / "b5_ucs");
   const ModelRun t = run_model(binary, dir / "tension_granite.toml", base / "b5_tension");
-  const std::string paper = "granite static tests (SHPB granite paper; VERIFICATION.md B5)";
+  const std::string paper = "granite static tests [Li2018]";
   std::vector<CaseResult> r;
   const auto add = [&](std::string name, double expected, double measured, const ModelRun& run,
                        std::string settings) {

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string paper = "marble cyclic-loading paper (Rock Mech Rock Eng)";
+const std::string paper = "marble cyclic loading [Yu2023]";
 constexpr double reference_ucs = 47.89e6;  // Pa, the paper's simulated UCS
 
 struct Line {

@@ -75,8 +75,7 @@ std::vector<CaseResult> marble_sets_over_seeds(const std::string& source_dir,
     other.join();
   }
   std::vector<CaseResult> r;
-  const std::string table1 =
-      "marble, UDEC Voronoi (variable-amplitude cyclic loading paper, Rock Mech Rock Eng), Table 1";
+  const std::string table1 = "marble, UDEC Voronoi [Yu2023], Table 1";
   for (std::size_t set = 0; set < sets.size(); ++set) {
     const auto group = [&](std::size_t test) {
       const auto first =
@@ -106,7 +105,7 @@ std::vector<CaseResult> marble_sets_over_seeds(const std::string& source_dir,
     r.push_back(judged(label + ": Poisson's ratio (40-60 % of peak), mean of 5 seeds", table1,
                        0.225, nu, 0.05, settings("ucs_marble", nu), seconds));
     r.push_back(judged(label + ": initial Poisson's ratio (10-30 % of peak), mean of 5 seeds",
-                       "marble cyclic-loading paper, B2: about 0.18 at the first loading", 0.18,
+                       "marble cyclic loading [Yu2023], B2: about 0.18 at the first loading", 0.18,
                        nu0, 0.10, settings("ucs_marble", nu0), seconds));
     r.push_back({"C3", label + ": direct tensile strength, mean of 5 seeds (Pa)",
                  "derived; the paper gives none", 0, direct.mean, 0, 0,

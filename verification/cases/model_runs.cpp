@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "cases.hpp"
+#include "vorodec/io/json.hpp"
 
 namespace vorodec::verification {
 
@@ -69,11 +70,37 @@ CaseResult relative(std::string id, std::string name, std::string reference, dou
   return c;
 }
 
+namespace {
+
+// The first value named `key`, depth first in the file's order; null if none.
+io::Json first_named(const io::Json& j, const std::string& key) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) {
+      if (k == key) return v;
+      if (io::Json found = first_named(v, key); !found.is_null()) return found;
+    }
+  } else if (j.is_array()) {
+    for (const auto& v : j)
+      if (io::Json found = first_named(v, key); !found.is_null()) return found;
+  }
+  return nullptr;
+}
+
+io::Json first_named(const std::string& json, const std::string& key) {
+  const io::Json doc = io::Json::parse(json, nullptr, false);
+  return doc.is_discarded() ? io::Json() : first_named(doc, key);
+}
+
+}  // namespace
+
 double json_number(const std::string& json, const std::string& key) {
-  const std::string tag = "\"" + key + "\": ";
-  const auto pos = json.find(tag);
-  return pos == std::string::npos ? std::nan("")
-                                  : std::strtod(json.c_str() + pos + tag.size(), nullptr);
+  const io::Json v = first_named(json, key);
+  return v.is_number() ? v.get<double>() : std::nan("");
+}
+
+std::string json_string(const std::string& json, const std::string& key) {
+  const io::Json v = first_named(json, key);
+  return v.is_string() ? v.get<std::string>() : std::string();
 }
 
 int Table::column(const std::string& name) const {

@@ -21,8 +21,10 @@ ModelRun run_model(const std::string& binary, const std::filesystem::path& model
 // as models/ucs_marble_two_nu.toml), so another model on the same base can run with it.
 std::string set_arguments(const std::filesystem::path& model);
 
-// A number in summary.json ("key": value); NaN if absent.
+// The first number or string named `key` in a summary.json's text, depth first in the file's
+// order (a nested key by its own name: "tensile" in "cracks"); NaN or "" if absent.
 double json_number(const std::string& json, const std::string& key);
+std::string json_string(const std::string& json, const std::string& key);
 
 // A CSV file as a header and rows of cells.
 struct Table {
@@ -39,7 +41,7 @@ struct CaseResult;
 // A row judged by its relative error |measured - expected| / |expected| (1 when not finite).
 CaseResult relative(std::string id, std::string name, std::string reference, double expected,
                     double measured, double tolerance, std::string settings, double seconds);
-// Energy balance at the end of a run (PHYSICS section 10), from the last row of its history:
+// Energy balance at the end of a run (docs/theory.md), from the last row of its history:
 // (boundary work - strain - kinetic - damping - friction - breakage) / boundary work, judged at
 // 1 %.
 CaseResult energy_balance(const std::string& id, const ModelRun& run, const std::string& settings);

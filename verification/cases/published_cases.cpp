@@ -12,8 +12,7 @@ std::vector<CaseResult> b1_marble_ucs(const std::string& source_dir, const std::
   const std::filesystem::path model = std::filesystem::path(source_dir) / "models/ucs_marble.toml";
   const auto out = std::filesystem::temp_directory_path() / "vorodec_verification/b1";
   const ModelRun s = run_model(binary, model, out);
-  const std::string paper =
-      "marble, UDEC Voronoi (variable-amplitude cyclic loading paper, Rock Mech Rock Eng), Table 1";
+  const std::string paper = "marble, UDEC Voronoi [Yu2023], Table 1";
   const std::string settings = "models/ucs_marble.toml: 1302 blocks, 5e-3 m/s, time_step 5e-7 s";
   std::vector<CaseResult> r;
   const auto add = [&](std::string name, double expected, double measured, double tol) {

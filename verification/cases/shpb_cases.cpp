@@ -1,4 +1,4 @@
-// Split Hopkinson pressure bars (VERIFICATION A12, B5; PHYSICS 15): the exact bars against the
+// Split Hopkinson pressure bars (docs/theory.md): the exact bars against the
 // striker's analytic pulse, full transmission from bar to bar, and the granite under impact.
 #include <fmt/format.h>
 
@@ -9,6 +9,7 @@
 
 #include "cases.hpp"
 #include "model_runs.hpp"
+#include "vorodec/io/json.hpp"
 #include "vorodec/loading/pressure_bar.hpp"
 #include "vorodec/measure/three_wave.hpp"
 
@@ -23,14 +24,6 @@ loading::BarProperties steel_bar(double length) {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// A string value in summary.json ("key": "value").
-std::string json_string(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\": \"");
-  if (at == std::string::npos) return "";
-  const auto begin = at + key.size() + 5;
-  return json.substr(begin, json.find('"', begin) - begin);
 }
 
 }  // namespace
@@ -66,8 +59,8 @@ std::vector<CaseResult> a12_exact_bar() {
       "from the face, sampled every {:.3g} s",
       ls, v, x, h);
   const double sec = seconds_since(t0);
-  return {{"A12", "exact bar: incident stress (Pa)", "rho c0 v / 2 (PHYSICS 15)", sigma0, plateau,
-           std::abs(plateau - sigma0) / sigma0, 0.01, settings, sec},
+  return {{"A12", "exact bar: incident stress (Pa)", "rho c0 v / 2 (docs/theory.md)", sigma0,
+           plateau, std::abs(plateau - sigma0) / sigma0, 0.01, settings, sec},
           {"A12", "exact bar: pulse duration (s)", "2 L_striker / c0", duration, measured,
            std::abs(measured - duration) / duration, 0.02,
            settings + "; half-amplitude crossings, so within one sample", sec},
@@ -133,7 +126,7 @@ std::vector<CaseResult> a12_block_bars(const std::string& source_dir, const std:
       "models/shpb_granite.toml, bars = \"blocks\" (5 mm blocks), square pulse, striker 0.27 m at "
       "2 m/s, gauge 0.75 m from the face; the pulse enters through the quiet far end";
   std::vector<CaseResult> rows{
-      {"A12", "block bar: incident stress (Pa)", "rho c0 v / 2 (PHYSICS 15)", sigma0, stress,
+      {"A12", "block bar: incident stress (Pa)", "rho c0 v / 2 (docs/theory.md)", sigma0, stress,
        std::abs(stress - sigma0) / sigma0, 0.01, settings, a.seconds},
       {"A12", "block bar: pulse duration (s)", "2 L_striker / c0", duration, measured,
        std::abs(measured - duration) / duration, 0.02, settings + "; half-amplitude crossings",
@@ -195,9 +188,10 @@ ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::strin
                                    "transgranular_tensile", "transgranular_shear"};
     double total = 0;
     std::array<double, 4> len{};
+    const io::Json summary = io::Json::parse(r.summary, nullptr, false);
     for (std::size_t k = 0; k < 4; ++k) {
-      const auto at = r.summary.find("\"" + classes[k] + "\"");
-      len[k] = at == std::string::npos ? NAN : json_number(r.summary.substr(at), "length_m");
+      const io::Json::json_pointer at("/crack_classes/" + classes[k] + "/length_m");
+      len[k] = !summary.is_discarded() && summary.contains(at) ? summary[at].get<double>() : NAN;
       total += len[k];
     }
     for (std::size_t k = 0; k < 4; ++k) row.crack_share[k] = len[k] / total;

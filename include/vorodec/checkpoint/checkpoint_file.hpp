@@ -15,7 +15,8 @@
 
 namespace vorodec::checkpoint {
 
-inline constexpr std::uint32_t kFormat = 2;
+// 3: the quasi-static driver saves its stage modes in turn (each its state and reports).
+inline constexpr std::uint32_t kFormat = 3;
 
 struct Header {
   std::string vorodec_version;

@@ -144,7 +144,9 @@ class LawGroup {
   // Sampled properties of local contact i, named by property_names() (for reports and files).
   virtual std::vector<double> properties(std::size_t i) const = 0;
   virtual std::span<const std::string_view> property_names() const = 0;
-  // Stress corrosion: local contact i's bond (false: the law has none the layers can degrade).
+  // Stress corrosion: whether the law's contacts have bonds the layers can degrade, and local
+  // contact i's bond (false: it has none).
+  virtual bool degradable_bonds() const = 0;
   virtual bool bond(std::size_t i, BondView& out) const = 0;
   // Gives local contact i the springs and strength of `b` and, at its current gap, the forces
   // (fn, fs) N; or breaks it (tension and cohesion lost) with b.broken.
@@ -170,11 +172,24 @@ struct ParamSpec {
 
 using LawParams = std::map<std::string, model::Distribution, std::less<>>;
 
+// Pa/m, a law's springs per unit contact length as a contact first takes load (their means): what
+// platens, quiet boundaries and wave speeds are sized by. 0 where the law has no such spring.
+struct NominalStiffness {
+  double normal = 0, shear = 0;
+};
+
+// The mean of a law's parameter `key`, 0 if it has none.
+inline double mean_of(const LawParams& p, std::string_view key) {
+  const auto it = p.find(key);
+  return it == p.end() ? 0.0 : it->second.mean();
+}
+
 struct LawInfo {
   std::string_view name;
   std::string_view doc;
   std::span<const ParamSpec> params;
   std::unique_ptr<LawGroup> (*make)(const LawParams& params, std::uint64_t seed);
+  NominalStiffness (*nominal_stiffness)(const LawParams& params);
 };
 
 inline constexpr double required = std::numeric_limits<double>::quiet_NaN();

@@ -52,6 +52,11 @@ class LawGroupOf final : public LawGroup {
     return 0.0;
   }
 
+  bool degradable_bonds() const override {
+    return requires(const typename Law::Props& p, const typename Law::State& st) {
+      Law::bond(p, st);
+    };
+  }
   bool bond(std::size_t i, BondView& out) const override {
     if constexpr (requires { Law::bond(props_[i], state_[i]); }) {
       out = Law::bond(props_[i], state_[i]);

@@ -1,0 +1,160 @@
+#pragma once
+// The model file (TOML): every key documented in README.md, validated with file, key and line.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "vorodec/geometry/grains.hpp"
+#include "vorodec/geometry/tessellation.hpp"
+#include "vorodec/io/input_error.hpp"
+#include "vorodec/laws/contact_law.hpp"
+#include "vorodec/laws/stress_corrosion.hpp"
+#include "vorodec/loading/load_path.hpp"
+#include "vorodec/loading/pressure_bar.hpp"
+#include "vorodec/loading/quiet_boundary.hpp"
+#include "vorodec/solver/solver.hpp"
+
+namespace vorodec::io {
+
+// One value replaced in a model file before it is read (`vorodec run --set`, batch files).
+struct Override {
+  std::string key;     // dotted path: "loading.confining_stress", "seed", "stage[0].end_time"
+  std::string value;   // a TOML value: 5e6, 42, "linear_elastic", { weibull_shape = 4, mean = 1e7 }
+  std::string origin;  // where it was given, for messages: "batch.toml:12", "--set"
+};
+
+struct LawChoice {
+  std::string name;
+  laws::LawParams params;
+};
+
+struct Mineral {
+  std::string name;
+  double fraction = 0;  // requested area fraction (0..1); unused with a grain file
+  double density = 0;   // kg/m^3
+  // Pa and plane-strain ratio of the mineral's zones when blocks are deformable (0: not given).
+  double youngs_modulus = 0, poisson_ratio = 0;
+};
+
+// A grain-based specimen ([specimen] kind = "grains"): minerals and the contact laws inside grains
+// (transgranular) and between grains (intergranular), by mineral and mineral pair.
+struct GrainConfig {
+  geometry::GrainSettings settings;
+  std::optional<std::filesystem::path> grain_file;
+  std::vector<Mineral> minerals;
+  LawChoice intergranular, transgranular;        // defaults
+  std::vector<std::optional<LawChoice>> inside;  // per mineral: its own transgranular law
+  struct Pair {
+    std::size_t a, b;  // minerals
+    LawChoice law;     // intergranular law between grains of these minerals
+  };
+  std::vector<Pair> pairs;
+};
+
+// [corrosion]: the stress-corrosion layers of a grain-based specimen (PHYSICS 13; paper 000).
+struct CorrosionConfig {
+  laws::DrivingRate rate;        // beta1(rs): m/s for bonded lengths
+  double beta3_per_beta1 = 1.0;  // 1/m: beta3 (1/s, strength factors) = this x beta1
+  bool transgranular = true;     // bonded-length reduction inside grains
+  bool intergranular = true;     // strength degradation on grain boundaries
+  laws::BondedLength bonded;
+  laws::StrengthDegradation degradation;
+};
+
+// [quiet_boundary]: viscous boundaries on sides of the specimen's outline, and a half-sine
+// particle-velocity pulse entering through one side (loading/quiet_boundary.hpp, PHYSICS 14).
+struct QuietBoundaryConfig {
+  std::vector<loading::Side> sides;  // absorbing
+  // m/s; 0: a row of rigid blocks' sqrt(jkn d / density) and sqrt(jks d / density), d the mean
+  // block size (VERIFICATION A9)
+  double p_wave_speed = 0, s_wave_speed = 0;
+  std::optional<loading::Side> input_side;  // drives and absorbs
+  double input_velocity = 0;                // m/s, peak of the half-sine
+  double input_duration = 0;                // s
+  bool input_shear = false;                 // along the side, not into it
+};
+
+// [shpb]: a split Hopkinson pressure bar test instead of [[stage]]s (loading/pressure_bar.hpp,
+// PHYSICS 15): a striker hits the incident bar, whose face is the top platen; the transmitted
+// bar's face is the bottom platen. Time 0 is the pulse's arrival at the specimen.
+struct ShpbConfig {
+  loading::BarProperties incident, transmitted;
+  std::vector<double> incident_gauges, transmitted_gauges;  // m from the specimen face
+  double striker_length = 0;                                // m, of the incident bar's material
+  double striker_velocity = 0;                              // m/s
+  double rise_time = 0;        // s, the pulse's linear rise and fall (a pulse shaper); 0: none
+  double duration = 0;         // s of the specimen's loading; 0: twice the pulse's duration
+  double record_interval = 0;  // s between bars.csv rows; 0: the pulse's duration / 1000
+  double equilibrium_tolerance = 0.05;  // -, |eta| of "in equilibrium"
+  // Bars built from rectangular blocks of this length (m) with a bar contact law, instead of the
+  // exact 1D bars; the striker's pulse enters through the incident bar's far end; gauges at the
+  // joints nearest their positions.
+  bool block_bars = false;
+  double bar_block_length = 0;
+};
+
+struct OutputSettings {
+  long history_steps = 200;       // steps between history rows
+  long vtk_steps = 20000;         // steps between VTK frames (also at stage ends)
+  double damage_grid_cell = 0.0;  // m, cell side of the damage grid; 0: about 5 mean block sizes
+  long checkpoint_steps = 0;      // steps between checkpoints; 0: none by step count
+  double checkpoint_wall_time = 600.0;  // s of wall time between checkpoints; 0: none by time
+  // Acoustic-emission events (ae_events.csv): cracks within ae_radius m of each other, each
+  // within ae_radius / ae_shear_wave_speed s of the last, are one event. 0: two mean block
+  // sizes, and the shear-wave speed of a row of blocks sqrt(jks d / density) (PHYSICS 14).
+  double ae_radius = 0.0;
+  double ae_shear_wave_speed = 0.0;
+};
+
+// [blocks] deformable = true: specimen blocks zoned into constant-strain triangles (platens stay
+// rigid).
+struct DeformableSettings {
+  bool enabled = false;
+  double zone_size = 0;       // m, longest zone edge
+  double youngs_modulus = 0;  // Pa
+  double poisson_ratio = 0;   // plane strain
+};
+
+struct ModelConfig {
+  std::filesystem::path file;
+  // Every file the model was read from (the model file, its base files, a specimen or grain
+  // file): a checkpoint's model hash covers them.
+  std::vector<std::filesystem::path> sources;
+  std::string title;
+  std::uint64_t seed = 1;
+  geometry::TessellationSettings tessellation;
+  std::optional<std::filesystem::path> specimen_file;  // prepared specimen (vorodec build)
+  int specimen_line = 0;                               // line of [specimen], for geometry errors
+  std::string implicit_start_where;  // "file:line: key 'stage[0].implicit_start'", for run errors
+  double density = 0;                // kg/m^3
+  DeformableSettings deformable;     // [blocks] deformable, zone_size, E, nu
+  double rounding_length = 0;        // m
+  LawChoice joints;  // specimen block to block (grain-based: the default intergranular law)
+  // [joints.mix]: this fraction of the specimen's joints (block pairs, drawn at random from the
+  // seed) take a second law (paper 001's reading (b): Burger's and bonded contacts side by side).
+  struct JointMix {
+    double fraction = 0;  // -, in (0, 1)
+    LawChoice law;
+  };
+  std::optional<JointMix> joint_mix;
+  std::optional<GrainConfig> grains;  // grain-based specimen
+  std::optional<CorrosionConfig> corrosion;
+  std::optional<QuietBoundaryConfig> quiet_boundary;
+  std::optional<ShpbConfig> shpb;  // the load path is the bars' (no stages)
+  LawChoice platens;               // platen to specimen
+  bool platens_bonded = false;     // glued to the specimen (direct tension)
+  solver::SolverSettings solver;
+  long max_steps = 0;
+  loading::LoadPath load_path;
+  OutputSettings output;
+};
+
+// Overrides are applied to the parsed file, so they are validated like the file's own keys; an
+// error about an override names its origin instead of the model file's line.
+ModelConfig read_model_file(const std::filesystem::path& file,
+                            const std::vector<Override>& overrides = {});
+
+}  // namespace vorodec::io

@@ -1,0 +1,76 @@
+#pragma once
+// The calibration file (TOML) of `vorodec calibrate`: the tests to run (model files plus
+// overrides), the parameters to vary, ties between model keys, the laboratory targets, the seeds
+// and the budget. Keys are documented in README.md ("Calibration").
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "vorodec/input/model_file.hpp"
+
+namespace vorodec::workflows {
+
+struct CalibrationTest {
+  std::string name;  // folder name part and the name targets use
+  std::filesystem::path model;
+  std::vector<io::Override> overrides;
+  double confining_stress = 0;  // Pa, read from the model, for envelope targets
+};
+
+struct CalibrationParameter {
+  std::string name;        // a model key ("joints.jkn") or a free name used by ties
+  bool model_key = false;  // set in every run (a free name only feeds ties)
+  double min = 0, max = 0, start = 0;
+  bool log_scale = false;
+  // Targets proportional to this parameter (dimensional analysis: E with jkn, strengths with
+  // contact strengths), for the first guess.
+  std::vector<std::size_t> scales;
+  std::string origin;  // "calibrate.toml:12", for messages
+};
+
+// A model key computed from parameters: key = c x p1 x p2 / p3 ...
+struct Tie {
+  std::string key;
+  double constant = 1;
+  std::vector<std::size_t> times, divided_by;  // parameters
+  std::string origin;
+};
+
+enum class TargetKind { summary, envelope_cohesion, envelope_friction };
+
+struct CalibrationTarget {
+  std::string name;
+  std::string quantity;  // a summary.json key, or cohesion_Pa / friction_angle_deg
+  TargetKind kind = TargetKind::summary;
+  std::vector<std::size_t> tests;  // one for a summary key; two or more for an envelope
+  double value = 0;
+  double weight = 1;
+  double tolerance = 0;  // relative (0.03 = 3 %), or absolute in the quantity's unit
+  bool absolute = false;
+  std::string origin;  // "calibrate.toml:40: target 'UCS'", for messages
+};
+
+struct CalibrationPlan {
+  std::filesystem::path file;
+  std::string title;
+  std::filesystem::path output;  // relative to the working directory
+  std::vector<std::uint64_t> seeds;
+  long max_runs = 0;            // model runs, the sensitivity round included
+  double max_wall_seconds = 0;  // s
+  double step = 0.1;            // the sensitivity round's relative step (log scale: ln(1.1))
+  std::vector<CalibrationTest> tests;
+  std::vector<CalibrationParameter> parameters;
+  std::vector<Tie> ties;
+  std::vector<CalibrationTarget> targets;
+};
+
+// The overrides of one run: the test's own, the seed, the parameters (model keys) and the ties.
+std::vector<io::Override> run_overrides(const CalibrationPlan& plan, std::size_t test,
+                                        std::uint64_t seed, const std::vector<double>& values);
+
+// Throws ModelFileError (file, key and line) for bad input, including a parameter bound that a
+// test's model file refuses (a negative stiffness, a friction angle above 90 degrees).
+CalibrationPlan read_calibration_file(const std::filesystem::path& file);
+
+}  // namespace vorodec::workflows

@@ -1,0 +1,434 @@
+#include "corrosion_mode.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "vorodec/io/json.hpp"
+#include "vorodec/model/contact_geometry.hpp"
+
+namespace vorodec::run {
+
+// A member added is either saved in CorrosionControl::serialize or comes from the model file;
+// then update these sizes.
+static_assert(sizeof(CorrosionControl) == 232, "CorrosionControl changed: see its serialize()");
+static_assert(sizeof(CorrosionStageReport) == 96,
+              "CorrosionStageReport changed: it is saved as bytes");
+
+double CorrosionClock::next(double shortest) {
+  if (dt_ == 0.0) {
+    dt_ = shortest / n_c_;
+  } else if (quiet_ >= static_cast<long>(n_c_)) {
+    dt_ *= 2.0;
+    quiet_ = 0;
+  }
+  return std::min(dt_, shortest);
+}
+
+void CorrosionClock::after(bool broke) {
+  if (broke) {
+    dt_ = 0.0;
+    quiet_ = 0;
+  } else {
+    ++quiet_;
+  }
+}
+
+CorrosionControl::CorrosionControl(const loading::Stage& stage, const io::CorrosionConfig& config,
+                                   const model::Model& model, const solver::Solver& solver,
+                                   std::span<const std::int32_t> block_grain)
+    : stage_(stage), config_(config), clock_(stage.corrosion.steps_per_failure) {
+  const auto& contacts = model.contacts;
+  const auto specimen = [&](std::int32_t b) {
+    return static_cast<std::size_t>(b) < block_grain.size() &&
+           model.blocks.group[static_cast<std::size_t>(b)] == model::Group::specimen;
+  };
+  // Joints by block pair, in pair order then contact id: the same for any contact order.
+  std::map<std::pair<std::int32_t, std::int32_t>, std::vector<Bond>> joints;
+  std::vector<Bond> inter;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const model::Contact& c = contacts[i];
+    laws::BondView b;
+    if (!c.bonded || c.state >= model::ContactState::tensile_failed || !specimen(c.a) ||
+        !specimen(c.b) || !solver.bond(i, b) || b.broken ||
+        (b.tension_force <= 0 && b.cohesion_force <= 0))
+      continue;
+    const Bond bond{c.id, b.kn, b.ks, b.tension_force, b.cohesion_force, b.tan_phi, 1.0};
+    const bool inside =
+        block_grain[static_cast<std::size_t>(c.a)] == block_grain[static_cast<std::size_t>(c.b)];
+    if (inside && config.transgranular)
+      joints[{std::min(c.a, c.b), std::max(c.a, c.b)}].push_back(bond);
+    else if (!inside && config.intergranular)
+      inter.push_back(bond);
+  }
+  for (auto& [key, list] : joints) {
+    std::sort(list.begin(), list.end(), [](const Bond& x, const Bond& y) { return x.id < y.id; });
+    joints_.push_back({static_cast<std::uint32_t>(bonds_.size()),
+                       static_cast<std::uint32_t>(list.size()), 0.0, 0.0, 0});
+    bonds_.insert(bonds_.end(), list.begin(), list.end());
+  }
+  std::sort(inter.begin(), inter.end(), [](const Bond& x, const Bond& y) { return x.id < y.id; });
+  inter_begin_ = bonds_.size();
+  bonds_.insert(bonds_.end(), inter.begin(), inter.end());
+  // D0: the joint's length, the sum of its contacts' lengths.
+  std::unordered_map<std::uint64_t, std::size_t> index;
+  for (std::size_t i = 0; i < contacts.size(); ++i) index[contacts[i].id] = i;
+  for (Joint& j : joints_) {
+    for (std::uint32_t k = j.first; k < j.first + j.count; ++k)
+      j.d0 += contacts[index.at(bonds_[k].id)].length;
+    j.d = j.d0;
+  }
+}
+
+CorrosionControl::Next CorrosionControl::after_step(solver::Solver& solver, model::Model& model,
+                                                    const measure::SpecimenState& s) {
+  const loading::CorrosionSettings& cs = stage_.corrosion;
+  ++report_.mechanical_steps;
+  ++since_equilibrium_;
+  if (since_equilibrium_ % cs.check_interval != 0) return Next::step;
+  const double target = stage_.target_stress;
+  const bool held = std::abs(s.axial_stress - target) <= 0.01 * target;
+  if (!started_) {  // loading: the limit counts from when the target is first held
+    if (held || held_at_ >= 0) held_at_ = std::max(held_at_, 0L) + cs.check_interval;
+    loading_peak_ = std::max(loading_peak_, s.axial_stress);
+    // Past its peak below the target: it cannot take the load at all.
+    if (loading_peak_ > 0.5 * target && s.axial_stress < 0.9 * loading_peak_) {
+      report_.failure_time = 0.0;
+      return Next::collapsed;
+    }
+  }
+  if (!held || solver.unbalanced_force_ratio() >= cs.equilibrium_ratio) {
+    if ((started_ ? since_equilibrium_ : held_at_) < cs.max_equilibrium_steps) return Next::step;
+    report_.failure_time = started_ ? report_.time : 0.0;
+    return Next::collapsed;
+  }
+  since_equilibrium_ = 0;
+  if (!started_) report_.first_strain = s.axial_strain;
+  report_.last_strain = s.axial_strain;
+  if (started_) clock_.after(broke_ || solver.cracks().size() > cracks_seen_);
+  started_ = true;
+  if (report_.time >= cs.max_time) return Next::time_up;
+  const double before = report_.time;
+  broke_ = corrode(solver, model);
+  cracks_seen_ = solver.cracks().size();
+  if (report_.time == before && !broke_) return Next::no_corrosion;
+  return Next::corroded;
+}
+
+namespace {
+laws::ContactEvent tensile_or_shear(bool tensile) {
+  return tensile ? laws::ContactEvent::tensile_failure : laws::ContactEvent::shear_failure;
+}
+}  // namespace
+
+bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
+  const io::CorrosionConfig& cfg = config_;
+  const double beta1 = cfg.rate.at(stage_.corrosion.driving_stress_ratio);
+  const double beta3 = cfg.beta3_per_beta1 * beta1;
+  std::unordered_map<std::uint64_t, std::size_t> index;
+  for (std::size_t i = 0; i < model.contacts.size(); ++i) index[model.contacts[i].id] = i;
+  const model::CornerView corners = model.blocks.corners();
+  const auto live = [&](std::uint64_t id, std::size_t& i) {
+    const auto it = index.find(id);
+    if (it == index.end()) return false;
+    i = it->second;
+    laws::BondView b;
+    return model.contacts[i].state < model::ContactState::tensile_failed && solver.bond(i, b) &&
+           !b.broken;
+  };
+
+  // What each corroding item is now: its rate, its floor and its time to failure.
+  struct JointNow {
+    std::vector<std::size_t> contacts;
+    std::vector<laws::PairContact> pair;
+    laws::PairSection p;
+    laws::BondStrength strength;
+    double rate = 0, d_min = 0;
+    bool fails = false, tensile = true;
+  };
+  std::vector<JointNow> now(joints_.size());
+  std::vector<double> rate(bonds_.size() - inter_begin_, 0.0), floor(rate.size(), 0.0);
+  std::vector<std::uint8_t> fails(rate.size(), 0), tensile(rate.size(), 1);
+  std::vector<std::pair<laws::ContactStress, laws::InitialStrength>> stress(rate.size());
+  const bool frozen = stage_.corrosion.frozen_rate;
+  // Each item's rate as its value falls with its forces held (laws::held_time).
+  const auto bond_rate = [&](const JointNow& jn) {
+    return [&cfg, beta1, &jn](double d) {
+      laws::BondSection s = jn.p.section;
+      s.d = d;
+      return laws::length_rate(cfg.bonded, beta1, s, jn.strength);
+    };
+  };
+  const auto factor_rate = [&](std::size_t q) {
+    return [&cfg, beta3, &held = stress[q]](double lambda) {
+      return laws::factor_rate(cfg.degradation, beta3,
+                               laws::stress_level(held.first, held.second, lambda));
+    };
+  };
+  double shortest = std::numeric_limits<double>::infinity();
+  bool broke = false;
+  const auto break_contacts = [&](const std::vector<std::size_t>& list, bool tension, long& n) {
+    for (const std::size_t i : list) {
+      solver.break_bond(i, tensile_or_shear(tension), report_.time);
+      ++n;
+    }
+    broke = true;
+  };
+  report_.active_bonds = report_.active_contacts = 0;
+
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    Joint& joint = joints_[j];
+    if (joint.done) continue;
+    JointNow& jn = now[j];
+    bool whole = true;
+    model::Point tangent{0, 0};
+    for (std::uint32_t k = joint.first; k < joint.first + joint.count; ++k) {
+      std::size_t i = 0;
+      if (!live(bonds_[k].id, i)) {
+        whole = false;
+        continue;
+      }
+      model::Contact& c = model.contacts[i];
+      const model::ContactFrame f = model::contact_frame(corners, c);
+      if (jn.contacts.empty()) tangent = {-f.n.y, f.n.x};
+      jn.contacts.push_back(i);
+      jn.pair.push_back({c.fn, c.fs, dot(f.point, tangent), c.length});
+    }
+    if (!whole) {  // one end already failed: the section has failed
+      joint.done = 1;
+      if (!jn.contacts.empty()) break_contacts(jn.contacts, true, report_.broken_transgranular);
+      continue;
+    }
+    const Bond& first = bonds_[joint.first];
+    double tension = 0, cohesion = 0;
+    for (std::uint32_t k = joint.first; k < joint.first + joint.count; ++k) {
+      tension += bonds_[k].tension0;
+      cohesion += bonds_[k].cohesion0;
+    }
+    jn.strength = {tension / joint.d0, cohesion / joint.d0, first.tan_phi};
+    jn.p = laws::pair_section(jn.pair, joint.d);
+    if (laws::bond_fails(jn.p.section, jn.strength)) {
+      jn.fails = true;
+      jn.tensile = laws::bond_tension(jn.p.section) >= jn.strength.tension;
+      continue;
+    }
+    jn.rate = laws::length_rate(cfg.bonded, beta1, jn.p.section, jn.strength);
+    if (jn.rate == 0) continue;
+    jn.d_min = laws::min_bonded_length(cfg.bonded, jn.p.section, jn.strength, joint.d0);
+    shortest = std::min(shortest, frozen ? laws::time_to(joint.d, jn.d_min, jn.rate)
+                                         : laws::held_time(bond_rate(jn), joint.d, jn.d_min));
+    ++report_.active_bonds;
+  }
+  for (std::size_t k = inter_begin_; k < bonds_.size(); ++k) {
+    Bond& b = bonds_[k];
+    const std::size_t q = k - inter_begin_;
+    std::size_t i = 0;
+    if (b.lambda <= 0 || !live(b.id, i)) continue;
+    const model::Contact& c = model.contacts[i];
+    const laws::ContactStress st{-c.fn / c.length, std::abs(c.fs) / c.length};
+    const laws::InitialStrength p0{b.tension0 / c.length, b.cohesion0 / c.length, b.tan_phi};
+    const double m = laws::stress_level(st, p0, b.lambda);
+    if (m >= 1.0) {
+      fails[q] = 1;
+      tensile[q] = st.sigma > 0 && st.sigma >= b.lambda * p0.tension;
+      continue;
+    }
+    rate[q] = laws::factor_rate(cfg.degradation, beta3, m);
+    if (rate[q] == 0) continue;
+    floor[q] = laws::min_strength_factor(cfg.degradation, st, p0);
+    tensile[q] = st.sigma > 0 && st.sigma / p0.tension >= (st.tau + st.sigma * p0.tan_phi) /
+                                                              std::max(p0.cohesion, 1e-300);
+    stress[q] = {st, p0};
+    shortest = std::min(shortest, frozen ? laws::time_to(b.lambda, floor[q], rate[q])
+                                         : laws::held_time(factor_rate(q), b.lambda, floor[q]));
+    ++report_.active_contacts;
+  }
+
+  // Bonds already past their strength (after the last equilibrium) break now, at no cost of time.
+  for (std::size_t j = 0; j < joints_.size(); ++j)
+    if (now[j].fails) {
+      joints_[j].done = 1;
+      break_contacts(now[j].contacts, now[j].tensile, report_.broken_transgranular);
+    }
+  for (std::size_t k = inter_begin_; k < bonds_.size(); ++k) {
+    const std::size_t q = k - inter_begin_;
+    std::size_t i = 0;
+    if (fails[q] && live(bonds_[k].id, i)) {
+      bonds_[k].lambda = 0;
+      break_contacts({i}, tensile[q], report_.broken_intergranular);
+    }
+  }
+  if (broke || !std::isfinite(shortest)) return broke;
+
+  const double dt = std::min(clock_.next(shortest), stage_.corrosion.max_time - report_.time);
+  report_.time += dt;
+  report_.min_step = report_.corrosion_steps ? std::min(report_.min_step, dt) : dt;
+  report_.max_step = std::max(report_.max_step, dt);
+  ++report_.corrosion_steps;
+  solver.set_crack_clock(report_.time);
+
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    JointNow& jn = now[j];
+    Joint& joint = joints_[j];
+    if (joint.done || jn.rate == 0) continue;
+    const double d = frozen ? joint.d - jn.rate * dt
+                            : laws::held_value_after(bond_rate(jn), joint.d, jn.d_min, dt);
+    if (d <= jn.d_min + 1e-9 * joint.d0) {
+      joint.done = 1;
+      const laws::BondSection& sec = jn.p.section;
+      // Which limit set the floor: the tensile root (or xi_a) or the shear one.
+      const bool shear =
+          jn.strength.cohesion > 0 &&
+          std::abs((std::abs(sec.fs) - sec.fn * jn.strength.tan_phi) / jn.strength.cohesion -
+                   jn.d_min) <= 1e-12 * joint.d0;
+      break_contacts(jn.contacts, !shear, report_.broken_transgranular);
+      continue;
+    }
+    const double xi = d / joint.d, total = d / joint.d0;
+    const std::vector<laws::PairContact> shrunk = laws::shrink_pair(jn.pair, jn.p, xi);
+    for (std::size_t n = 0; n < jn.contacts.size(); ++n) {
+      const Bond& b = bonds_[joint.first + n];
+      solver.set_bond(
+          jn.contacts[n],
+          {total * b.kn0, total * b.ks0, total * b.tension0, total * b.cohesion0, b.tan_phi, false},
+          shrunk[n].fn, shrunk[n].fs);
+    }
+    joint.d = d;
+  }
+  for (std::size_t k = inter_begin_; k < bonds_.size(); ++k) {
+    const std::size_t q = k - inter_begin_;
+    Bond& b = bonds_[k];
+    std::size_t i = 0;
+    if (rate[q] == 0 || !live(b.id, i)) continue;
+    b.lambda = frozen ? b.lambda - rate[q] * dt
+                      : laws::held_value_after(factor_rate(q), b.lambda, floor[q], dt);
+    if (b.lambda <= floor[q] + 1e-9) {
+      b.lambda = 0;
+      break_contacts({i}, tensile[q], report_.broken_intergranular);
+      continue;
+    }
+    const model::Contact& c = model.contacts[i];
+    solver.set_bond(i,
+                    {b.kn0, b.ks0, b.lambda * b.tension0, b.lambda * b.cohesion0, b.tan_phi, false},
+                    c.fn, c.fs);
+  }
+  return broke;
+}
+
+void CorrosionMode::begin_stage(const StageContext& c) {
+  control_.emplace(c.stage, *cfg_.corrosion, model_, solver_, specimen_.block_grain);
+  solver_.set_crack_clock(0.0);
+}
+
+ModeVerdict CorrosionMode::after_step(const StageContext& c, const measure::SpecimenState& s) {
+  switch (control_->after_step(solver_, model_, s)) {
+    case CorrosionControl::Next::step:
+      return {};
+    case CorrosionControl::Next::corroded:
+      return {":equilibrium", "", false, false};
+    case CorrosionControl::Next::collapsed: {
+      const double t = control_->report().failure_time;
+      return {"",
+              fmt::format("static-fatigue failure in stage '{}' after {:.4g} s ({:.4g} days) of "
+                          "corrosion: no equilibrium within {} steps",
+                          c.stage.name, t, t / 86400.0, c.stage.corrosion.max_equilibrium_steps),
+              true, true};
+    }
+    case CorrosionControl::Next::no_corrosion:
+      return {"",
+              fmt::format("stage '{}': no bond corrodes at this stress (none above its "
+                          "activation): no static-fatigue failure",
+                          c.stage.name),
+              true, false};
+    case CorrosionControl::Next::time_up:
+      return {"", "", true, false};
+  }
+  return {};
+}
+
+std::string CorrosionMode::unstable(const StageContext& c, const std::string& what) {
+  // Static fatigue: the collapse went unstable.
+  CorrosionStageReport r = control_->report();
+  r.failure_time = r.time;
+  reports_.emplace_back(c.index, r);
+  control_.reset();
+  solver_.set_crack_clock(std::numeric_limits<double>::quiet_NaN());
+  return fmt::format(
+      "static-fatigue failure in stage '{}' after {:.4g} s of corrosion, unstable: {}",
+      c.stage.name, r.time, what);
+}
+
+void CorrosionMode::end_stage(const StageContext& c) {
+  reports_.emplace_back(c.index, control_->report());
+  control_.reset();
+  solver_.set_crack_clock(std::numeric_limits<double>::quiet_NaN());
+}
+
+bool CorrosionMode::progress(const StageContext&, ProgressReport& r) const {
+  if (!control_) return false;
+  const CorrosionStageReport& c = control_->report();
+  r.clock = fmt::format("corrosion {:.4g} s = {:.4g} days = {:.3g} years, step {}", c.time,
+                        c.time / 86400.0, c.time / (365.25 * 86400.0), c.corrosion_steps);
+  // When the specimen fails is what the stage finds out: no percentage.
+  r.waiting = fmt::format("static fatigue: until collapse; {} tensile + shear cracks",
+                          solver_.cracks().size());
+  return true;
+}
+
+void CorrosionMode::column_values(std::vector<double>& row) const {
+  // The clock of the current corrosion stage, or of the last one.
+  const double clock = control_           ? control_->time()
+                       : reports_.empty() ? 0.0
+                                          : reports_.back().second.time;
+  row.insert(row.end(), {clock, solver_.energy().corrosion});
+}
+
+// The corrosion clock, its steps and the failure time (null: no failure).
+void CorrosionMode::summarise(io::Json& summary) const {
+  if (reports_.empty()) return;
+  io::Json rows = io::Json::array();
+  for (const auto& [i, r] : reports_) {
+    const loading::Stage& st = cfg_.load_path.stages[i];
+    rows.push_back(
+        {{"stage", st.name},
+         {"driving_stress_ratio", io::rounded(st.corrosion.driving_stress_ratio, 6)},
+         {"target_stress_Pa", io::rounded(st.target_stress, 8)},
+         {"corrosion_time_s", io::rounded(r.time, 10)},
+         {"failure_time_s", io::rounded(r.failure_time, 10)},
+         {"corrosion_steps", r.corrosion_steps},
+         {"mechanical_steps", r.mechanical_steps},
+         {"mechanical_steps_per_corrosion_step",
+          io::rounded(
+              r.corrosion_steps ? double(r.mechanical_steps) / double(r.corrosion_steps) : 0.0, 6)},
+         {"corrosion_step_s", {io::rounded(r.min_step, 6), io::rounded(r.max_step, 6)}},
+         {"creep_strain", io::rounded(r.last_strain - r.first_strain, 6)},
+         {"broken_transgranular", r.broken_transgranular},
+         {"broken_intergranular", r.broken_intergranular},
+         {"corroding_bonds", r.active_bonds},
+         {"corroding_contacts", r.active_contacts}});
+  }
+  summary["corrosion_stages"] = std::move(rows);
+}
+
+void CorrosionMode::save(checkpoint::OutArchive& ar) const {
+  const bool active = control_.has_value();
+  ar(active);
+  if (active) ar(*control_);
+  save_stage_reports(ar, reports_);
+}
+
+void CorrosionMode::load(checkpoint::InArchive& ar, const loading::Stage& current) {
+  bool active = false;
+  ar(active);
+  control_.reset();
+  if (active) {
+    control_.emplace(current, *cfg_.corrosion);  // its state follows
+    ar(*control_);
+  }
+  load_stage_reports(ar, reports_);
+}
+
+}  // namespace vorodec::run

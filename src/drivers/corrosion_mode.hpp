@@ -1,0 +1,132 @@
+#pragma once
+// The corrosion mode (stages with corrosion = true). A corrosion stage's time advancement (PHYSICS
+// 13; POT07's psc.fis, paper 000 Fig. 9). At each equilibrium under the held stress: every
+// corroding bond's time to failure, forces held; one corrosion step for all; the degraded bonds. A
+// specimen that finds no equilibrium within max_equilibrium_steps has collapsed: the corrosion time
+// of its last equilibrium is its failure time.
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "stage_mode.hpp"
+#include "vorodec/checkpoint/archive_io.hpp"
+#include "vorodec/engine/prepared_model.hpp"
+#include "vorodec/input/model_file.hpp"
+#include "vorodec/measure/specimen.hpp"
+
+namespace vorodec::run {
+
+// What a corrosion stage did (summary.json).
+struct CorrosionStageReport {
+  double time = 0;  // s, corrosion time reached
+  // s, corrosion time of the last equilibrium before the specimen collapsed (NaN: it did not)
+  double failure_time = std::numeric_limits<double>::quiet_NaN();
+  double first_strain = 0, last_strain = 0;  // -, axial strain at the first and last equilibrium
+  double min_step = 0, max_step = 0;         // s, the corrosion step's range
+  long corrosion_steps = 0;
+  long mechanical_steps = 0;  // solver steps in the stage (equilibria included)
+  long broken_transgranular = 0, broken_intergranular = 0;  // bonds broken by corrosion
+  long active_bonds = 0, active_contacts = 0;               // corroding at the last corrosion step
+};
+
+// The corrosion step (POT07): the shortest estimated time to failure / n_c at first, doubled
+// after n_c steps without a break, estimated afresh after one; never past the next estimated
+// failure, so the bond that fails first fails at its estimated time.
+class CorrosionClock {
+ public:
+  explicit CorrosionClock(double n_c) : n_c_(n_c) {}
+  double next(double shortest);  // s, the step, given the shortest time to failure (s)
+  void after(bool broke);        // after the step and its equilibrium: did a bond break?
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(n_c_, dt_, quiet_);
+  }
+
+ private:
+  double n_c_, dt_ = 0.0;
+  long quiet_ = 0;
+};
+
+class CorrosionControl {
+ public:
+  enum class Next { step, corroded, collapsed, no_corrosion, time_up };
+  // Starts the stage: the corroding bonds of the specimen as they are now.
+  CorrosionControl(const loading::Stage& stage, const io::CorrosionConfig& config,
+                   const model::Model& model, const solver::Solver& solver,
+                   std::span<const std::int32_t> block_grain);
+  // A control whose state a checkpoint then loads.
+  CorrosionControl(const loading::Stage& stage, const io::CorrosionConfig& config)
+      : stage_(stage), config_(config), clock_(stage.corrosion.steps_per_failure) {}
+  // After each solver step of the stage: at an equilibrium, one corrosion step (corroded).
+  Next after_step(solver::Solver& solver, model::Model& model, const measure::SpecimenState& s);
+  double time() const { return report_.time; }
+  const CorrosionStageReport& report() const { return report_; }
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(checkpoint::pod(bonds_), checkpoint::pod(joints_), inter_begin_, clock_, since_equilibrium_,
+       held_at_, loading_peak_, cracks_seen_, broke_, started_, checkpoint::bytes(report_));
+  }
+
+ private:
+  struct Bond {  // a corroding contact as the stage found it
+    std::uint64_t id;
+    double kn0, ks0, tension0, cohesion0;  // N/m, N/m, N, N
+    double tan_phi;
+    double lambda;  // grain boundaries: strength factor
+  };
+  struct Joint {  // a sub-block joint: bonds_[first, first + count)
+    std::uint32_t first, count;
+    double d0, d;  // m, bonded length at the start and now
+    std::uint8_t done;
+  };
+  bool corrode(solver::Solver& solver, model::Model& model);  // one step; true if a bond broke
+
+  const loading::Stage& stage_;
+  const io::CorrosionConfig& config_;
+  std::vector<Bond> bonds_;  // joints' bonds first, grain-boundary contacts from inter_begin_
+  std::vector<Joint> joints_;
+  std::size_t inter_begin_ = 0;
+  CorrosionClock clock_;
+  long since_equilibrium_ = 0;  // solver steps since the last equilibrium
+  long held_at_ = -1;           // loading: steps since the target was first held (-1: not yet)
+  double loading_peak_ = 0;     // Pa, the highest stress while loading
+  std::size_t cracks_seen_ = 0;
+  bool broke_ = false;    // the last corrosion step broke a bond
+  bool started_ = false;  // the first equilibrium (at the held stress) was reached
+  CorrosionStageReport report_;
+};
+
+class CorrosionMode final : public StageMode {
+ public:
+  explicit CorrosionMode(const DriverContext& c)
+      : cfg_(c.cfg), model_(c.model), solver_(c.solver), specimen_(c.specimen) {}
+  bool runs(const loading::Stage& stage) const override { return stage.corrosion.enabled; }
+  void begin_stage(const StageContext& c) override;
+  ModeVerdict after_step(const StageContext& c, const measure::SpecimenState& s) override;
+  std::string unstable(const StageContext& c, const std::string& what) override;
+  void end_stage(const StageContext& c) override;
+  bool progress(const StageContext& c, ProgressReport& r) const override;
+  // The corrosion clock (s) and the strain energy the layers took from bonds (J/m).
+  std::vector<std::string> column_names() const override {
+    return {"corrosion_time", "corrosion_energy"};
+  }
+  void column_values(std::vector<double>& row) const override;
+  void summarise(io::Json& summary) const override;
+  void save(checkpoint::OutArchive& ar) const override;
+  void load(checkpoint::InArchive& ar, const loading::Stage& current) override;
+
+ private:
+  const io::ModelConfig& cfg_;
+  model::Model& model_;
+  solver::Solver& solver_;
+  const geometry::Tessellation& specimen_;
+  std::optional<CorrosionControl> control_;                            // in a corrosion stage
+  std::vector<std::pair<std::size_t, CorrosionStageReport>> reports_;  // (stage index, report)
+};
+
+}  // namespace vorodec::run

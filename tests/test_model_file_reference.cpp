@@ -1,0 +1,68 @@
+// docs/model-file.md documents every key the readers ask for, and its contact-law tables are the
+// laws' own parameter specs (`vorodec laws`), so neither can drift from the code.
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <set>
+#include <string>
+
+#include "run_support.hpp"
+
+namespace fs = std::filesystem;
+using namespace vorodec::testing;
+
+namespace {
+
+const fs::path source = VORODEC_SOURCE_DIR;
+
+// Every identifier inside the page's `code spans` and [table] headings.
+std::set<std::string> documented(const fs::path& page) {
+  const std::string text = slurp(page);
+  std::set<std::string> words;
+  const std::regex span(R"re(`([^`\n]*)`|\[([a-z_.\[\]]+)\])re"), word("[a-z_0-9]+");
+  for (std::sregex_iterator s(text.begin(), text.end(), span), end; s != end; ++s) {
+    const std::string inside = (*s)[1].matched ? (*s)[1].str() : (*s)[2].str();
+    for (std::sregex_iterator w(inside.begin(), inside.end(), word); w != end; ++w)
+      words.insert(w->str());
+  }
+  return words;
+}
+
+// The keys a reader's source asks a TomlSection for by name.
+std::set<std::string> asked_for(const fs::path& reader) {
+  const std::string text = slurp(reader);
+  const std::regex call(
+      R"re(\b(?:number|positive|non_negative|integer|string|boolean|numbers|node|sub|has|)re"
+      R"re(specimen_length)\("([a-z_0-9]+)")re");
+  std::set<std::string> keys;
+  for (std::sregex_iterator m(text.begin(), text.end(), call), end; m != end; ++m)
+    keys.insert((*m)[1].str());
+  return keys;
+}
+
+void expect_documented(const fs::path& reader, const fs::path& page) {
+  const std::set<std::string> keys = asked_for(reader), words = documented(page);
+  EXPECT_GT(keys.size(), 5u) << reader;  // the pattern still finds the reader's keys
+  for (const std::string& key : keys)
+    EXPECT_TRUE(words.count(key)) << "`" << key << "` of " << reader << " is not in " << page;
+}
+
+}  // namespace
+
+TEST(ModelFileReference, EveryKeyTheReadersAskForIsDocumented) {
+  expect_documented(source / "src/input/model_file.cpp", source / "docs/model-file.md");
+  expect_documented(source / "src/workflows/batch_file.cpp", source / "docs/workflows.md");
+  expect_documented(source / "src/workflows/calibration_file.cpp", source / "docs/workflows.md");
+}
+
+TEST(ModelFileReference, LawTablesAreTheLawsOwnParameterSpecs) {
+  const Outcome o = run_capture("laws");
+  ASSERT_EQ(o.code, 0) << o.output;
+  const std::string page = slurp(source / "docs/model-file.md");
+  const std::string begin = "<!-- vorodec laws: begin -->\n", end = "<!-- vorodec laws: end -->";
+  const auto from = page.find(begin), to = page.find(end);
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  EXPECT_EQ(page.substr(from + begin.size(), to - from - begin.size()), o.output)
+      << "regenerate with scripts/update-law-reference.sh";
+}
