@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The low-damping study (VERIFICATION B6): models/ucs_ldb_lowdamping.toml (6,500 blocks, 0.2 m/s,
-# true masses) with local damping 0.7 and 0.015, one after the other on 2 threads, then the
-# comparison (postproc/low_damping_study.py: REPORT.md rows and a PNG) and each run's AE plots.
+# The low-damping study (B6 in verification/REPORT.md): models/ucs_ldb_lowdamping.toml (6,500
+# blocks, 0.2 m/s, true masses) with local damping 0.7 and 0.015, one after the other on 2 threads,
+# then the comparison (postproc/low_damping_study.py: REPORT.md rows and a PNG) and each run's AE
+# plots.
 # Usage: bench/low_damping.sh [build dir] [results dir]
 set -euo pipefail
 build=${1:-build}

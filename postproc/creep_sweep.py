@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Micro-macro relations of Burger's contacts from `vorodec batch models/batch_creep_sweep.toml`:
 fits the macro Burger's model to the creep stage of every case and relates each swept contact
-parameter to the macro parameter it drives (paper 001, Fig. 5: Kmn -> E1, Cmn -> eta1,
+parameter to the macro parameter it drives ([Guo2020], Fig. 5: Kmn -> E1, Cmn -> eta1,
 Kkn -> E2, Ckn -> eta2), and the friction angle to all four.
 
 Usage: postproc/creep_sweep.py results/batch_creep_sweep [--confining 25e6] [-o sweep.png]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The low-damping study (VERIFICATION B6; Hazzard, Young & Maxwell 2000): two runs of the same
+"""The low-damping study (B6; [Hazzard2000]): two runs of the same
 model, quasi-static damping and low damping, compared. Prints the markdown rows of
 verification/REPORT.md's B6 section and draws <out>.png: stress-strain curves and cumulative
 cracks against strain, and cracks per time window, of both runs.
@@ -67,7 +67,7 @@ def main():
     runs = [load(a.quasi_static), load(a.low_damping)]
     m = [measures(*r) for r in runs]
     drop = 1 - m[1]["ucs"] / m[0]["ucs"]
-    print("| measure | alpha 0.7 | alpha 0.015 | paper (HYM00) |")
+    print("| measure | alpha 0.7 | alpha 0.015 | [Hazzard2000] |")
     print("|---|---|---|---|")
     print("| UCS (MPa) | %.1f | %.1f | 213 (quasi-static) |" % (m[0]["ucs"], m[1]["ucs"]))
     print("| strength drop at low damping | | %.1f %% | ~15 %% (LdB granite) |" % (100 * drop))

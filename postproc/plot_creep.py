@@ -6,7 +6,7 @@ Usage: postproc/plot_creep.py results/creep/history.csv --confining 25e6
            [--paper 160:27.9,9613,1220,119 ...] [-o out.png] [--csv fits.csv]
 
 A creep stage is a run of history rows with one stage label that spans more than --min-span
-seconds of simulated time (default an hour; ramps last seconds). Each is fitted with the 1D Burger's model of paper 001,
+seconds of simulated time (default an hour; ramps last seconds). Each is fitted with the 1D Burger's model of [Guo2020],
 eq. 17, in the stage's own time t (days from its first row):
     eps(t) = s/E1 + s t/eta1 + s/E2 (1 - exp(-E2 t/eta2)),   s = mean axial stress - confining,
 by linear least squares in (1/E1, 1/eta1, 1/E2) for each retardation time eta2/E2 of a log grid.

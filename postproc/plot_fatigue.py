@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """Static fatigue by stress corrosion from `vorodec batch models/batch_ldb_fatigue.toml` (or any
 batch of corrosion-stage runs): log10 time to failure against the driving-stress ratio, per
-confinement and per layer set, with paper 000's points; and the creep curves (axial strain against
+confinement and per layer set, with [Liu2020]'s points; and the creep curves (axial strain against
 log corrosion time, one per case).
 
 Usage: postproc/plot_fatigue.py results/batch_ldb_fatigue [-o fatigue.png] [--curves curves.png]
        [--report]
 
---report prints the B3 rows of verification/REPORT.md: each paper 000 failure time against the
+--report prints the B3 rows of verification/REPORT.md: each [Liu2020] failure time against the
 case that matches it, error = |log10 t - log10 t_paper| (orders of magnitude), tolerance 1.
 
 Reads every case folder's summary.json (corrosion_stages) and history.csv (rows labelled
@@ -30,7 +30,7 @@ import numpy as np  # noqa: E402
 
 from csvdata import read_columns  # noqa: E402
 
-# Paper 000 (Liu & Cai 2020): its GSC model's failure times, s (text of section 4.2 and Fig. 16).
+# [Liu2020]: its GSC model's failure times, s (text of section 4.2 and Fig. 16).
 PAPER = {
     "unconfined": [(0.6, 139 * 86400.0), (0.8, 3.4 * 60.0)],
     "rs 0.8, s3 = 5 / 10 / 15 MPa": [(0.8, 5.0 * 60.0), (0.8, 15.5 * 60.0), (0.8, 39.1 * 60.0)],
@@ -94,7 +94,7 @@ def report(cases):
         print("| B3 | %s | %s | %.3f | %s | %.2f | 1 | %s | %s | %s%s |" % (
             check, reference, exp, outcome(name), err, ok, wall(name), name, note))
 
-    paper = "paper 000, section 4.2 / Fig. 16 (GSC model)"
+    paper = "[Liu2020], section 4.2 / Fig. 16 (GSC model)"
     row("log10 time to failure (s), rs 0.6, unconfined", paper, 139 * 86400.0, "gsc_s3=0_rs0.6")
     row("log10 time to failure (s), rs 0.8, unconfined", paper, 3.4 * 60, "gsc_s3=0_rs0.8",
         " (the rate constants were scaled to fit this point)")
@@ -118,9 +118,9 @@ def report(cases):
               paper, "monotone" if mono else "not monotone", "yes" if mono else "**no**",
               len(known)))
     for r in (0.6, 0.7, 0.8, 0.9):
-        print("| B3 | intra-grain layer alone (PSC), rs %g, unconfined: log10 t_f | paper 000 Fig. 12 "
-              "(POT07's PSC): fails, sooner than GSC below rs 0.65 | - | %s | - | - | info | %s | "
-              "psc_s3=0_rs%g (GSC: %s) |" % (r, outcome("psc_s3=0_rs%g" % r),
+        print("| B3 | intra-grain layer alone (PSC), rs %g, unconfined: log10 t_f | [Liu2020] Fig. 12 "
+              "([Potyondy2007]'s PSC): fails, sooner than GSC below rs 0.65 | - | %s | - | - | "
+              "info | %s | psc_s3=0_rs%g (GSC: %s) |" % (r, outcome("psc_s3=0_rs%g" % r),
                                              wall("psc_s3=0_rs%g" % r), r,
                                              outcome("gsc_s3=0_rs%g" % r)))
 
@@ -157,10 +157,10 @@ def main():
 
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     rs = np.linspace(0.55, 1.0, 100)
-    ax.plot(rs, lab_fit(rs), "k:", lw=1, label="laboratory fit (paper 000, Fig. 12)")
+    ax.plot(rs, lab_fit(rs), "k:", lw=1, label="laboratory fit ([Liu2020], Fig. 12)")
     for label, pts in PAPER.items():
         ax.plot([p[0] for p in pts], [math.log10(p[1]) for p in pts], "s", mfc="none", ms=8,
-                label="paper 000 GSC: " + label)
+                label="[Liu2020] GSC: " + label)
     groups = {}
     for c in cases:
         if c["failure"] and c["failure"] > 0:

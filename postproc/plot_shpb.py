@@ -10,10 +10,10 @@ For each results folder RUN:
 With --series OUT_PREFIX over several folders (a striker-speed series):
   OUT_PREFIX_stress_strain.png  dynamic stress-strain curves per striker speed
   OUT_PREFIX_dif.png            DIF (strength / --static-strength) against the mean strain rate to
-                                the peak, with paper 003's 1 + (rate / 154)^0.54
+                                the peak, with [Li2018]'s 1 + (rate / 154)^0.54
   OUT_PREFIX_cracks.png         crack-class shares of crack length against the strain rate
   OUT_PREFIX_dif.csv            the DIF table: striker speed, mean strain rate, dynamic strength,
-                                DIF, paper 003's DIF, max |eta| from half the peak to the peak
+                                DIF, [Li2018]'s DIF, max |eta| from half the peak to the peak
 A striker-speed series is a batch: vorodec batch models/batch_shpb_dif.toml, then this script
 over its case folders.
 
@@ -125,7 +125,7 @@ def series(runs, prefix, static):
     fig, ax = plt.subplots(figsize=(5.5, 4))
     ax.plot(rate, [r[1] for r in rows], "o-", label="vorodec")
     x = np.linspace(0, max(350, rate.max()), 200)
-    ax.plot(x, 1 + (x / 154) ** 0.54, "k--", label="paper 003: 1 + (rate/154)$^{0.54}$")
+    ax.plot(x, 1 + (x / 154) ** 0.54, "k--", label="[Li2018]: 1 + (rate/154)$^{0.54}$")
     ax.fill_between(x, 0.85 * (1 + (x / 154) ** 0.54), 1.15 * (1 + (x / 154) ** 0.54),
                     color="0.85", label="±15 %")
     ax.set_xlabel("mean strain rate to the peak (1/s)")
@@ -141,7 +141,7 @@ def series(runs, prefix, static):
     ax.axhline(10, color="0.5", ls=":", lw=0.8)
     ax.set_xlabel("mean strain rate to the peak (1/s)")
     ax.set_ylabel("share of crack length (%)")
-    ax.set_title("paper 003: IG tensile > 57.6 % at <= 100/s, shear <= 10 %", fontsize=9)
+    ax.set_title("[Li2018]: IG tensile > 57.6 % at <= 100/s, shear <= 10 %", fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(prefix + "_cracks.png", dpi=120)

@@ -1,6 +1,6 @@
 // Burger's creep through the real command: creep stages hold sigma1 - sigma3 while the specimen
 // creeps at a falling rate, time is told in days, the energy balance closes with the dashpots'
-// work; and the random split of joints between two laws (paper 001's reading (b)).
+// work; and the random split of joints between two laws ([Guo2020]'s reading (b)).
 #include <gtest/gtest.h>
 
 #include <map>

@@ -42,7 +42,7 @@ TEST(Deformable, ColumnMatchesElasticSolution) {
 }
 
 TEST(Deformable, ZoneForcesAreMinusHalfTheEdgeTractions) {
-  // One well-shaped triangle: a single zone. PHYSICS 7: F^a = -A sigma . grad N_a
+  // One well-shaped triangle: a single zone. docs/theory.md §4.3: F^a = -A sigma . grad N_a
   // = -(1/2) sum over the two edges meeting at a of (sigma . n_e) L_e.
   model::Model m;
   m.rounding_length = 1e-4;

@@ -201,7 +201,7 @@ TEST_F(EndToEnd, StressStrainMatchesCommittedReference) {
   EXPECT_NEAR(peak_of(now) / ref_peak, 1.0, 0.03);
 }
 
-// Energy balance (PHYSICS section 10) through a dynamic stress drop. With friction 10 deg and no
+// Energy balance (docs/theory.md §12) through a dynamic stress drop. With friction 10 deg and no
 // dilation blocks slide far after the peak; a corner that slid past another corner used to be
 // taken for that corner's duplicate until it had sunk in, and when finally found its spring
 // energy came from nowhere: 12.6 % of the boundary work in this run. Columns: 11 boundary work,

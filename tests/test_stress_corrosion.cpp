@@ -1,5 +1,5 @@
-// Stress corrosion (PHYSICS 13): the beam section vorodec maps a sub-block joint onto, and the
-// corrosion stage end to end (A11 is a verification case).
+// Stress corrosion (docs/theory.md §14.2): the beam section vorodec maps a sub-block joint onto,
+// and the corrosion stage end to end (A11 is a verification case).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -135,7 +135,7 @@ int write_undamped_energy(std::ostream& out, long steps, const std::filesystem::
         << ".\n";
     if (cost_accuracy_plot(ladder, dir, source_dir, "energy_ladder"))
       out << "\n![energy deviation against run time](energy_ladder.png)\n";
-    out << "\nThe shear spring is conservative (PHYSICS 3, README \"Energy conservation\"): "
+    out << "\nThe shear spring is conservative (docs/theory.md §5.6-5.7; docs/energy.md): "
            "its displacement is the exact change of a function of both blocks' positions, the "
            "corner's arc centre's coordinate along the edge (on the edge's rounded ends, the "
            "arc length of its angle from the edge normal at the radii's sum), and the contact "
@@ -156,7 +156,7 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
   for (const auto& r : a12_block_bars(source_dir, binary, dir / "shpb_runs")) rows.push_back(r);
   const ShpbVerification v = b5_granite_shpb(source_dir, binary, dir / "shpb_runs");
   const auto dif = [](double rate) { return 1.0 + std::pow(rate / 154.0, 0.54); };
-  const std::string source = "paper 003: DIF = 1 + (rate / 154)^0.54 (VERIFICATION B5)";
+  const std::string source = "[Li2018]: DIF = 1 + (rate / 154)^0.54";
   for (const ShpbRun& r : v.runs) {
     const std::string settings =
         fmt::format("models/shpb_granite.toml, striker {} m/s, {}", r.speed, r.status);
@@ -175,14 +175,14 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
     rows.push_back(c);
     if (r.speed == 10.0)
       rows.push_back({"B5", "equilibrium factor |eta| from half the peak to the peak, 10 m/s",
-                      "paper 003: within 8 % at 10 m/s", 0.0, r.eta_loading, r.eta_loading, 0.08,
+                      "[Li2018]: within 8 % at 10 m/s", 0.0, r.eta_loading, r.eta_loading, 0.08,
                       settings, r.seconds});
     if (r.speed == 5.0 || r.speed == 10.0) {
       const bool want_two = r.speed == 10.0;
       rows.push_back(
           {"B5",
            fmt::format("class {} response at {} m/s (1: yes)", want_two ? "II" : "I", r.speed),
-           "paper 003: class I at 5 m/s, class II at 10 m/s", 1.0,
+           "[Li2018]: class I at 5 m/s, class II at 10 m/s", 1.0,
            r.class_two == want_two ? 1.0 : 0.0, r.class_two == want_two ? 0.0 : 1.0, 0.0,
            settings + "; class II: the strain still grows after the peak", r.seconds});
     }
@@ -190,13 +190,13 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
     if (r.rate <= 100)
       rows.push_back(
           {"B5", fmt::format("intergranular tensile share of crack length, {:.0f} 1/s", r.rate),
-           "paper 003: > 57.6 % at <= 100 1/s", 0.576, ig_tensile,
+           "[Li2018]: > 57.6 % at <= 100 1/s", 0.576, ig_tensile,
            ig_tensile >= 0.576 ? 0.0 : (0.576 - ig_tensile) / 0.576, 0.0, settings, r.seconds});
     for (const std::size_t k : {std::size_t{1}, std::size_t{3}})
       rows.push_back({"B5",
                       fmt::format("{} share of crack length, {:.0f} 1/s",
                                   k == 1 ? "intergranular shear" : "transgranular shear", r.rate),
-                      "paper 003: each shear class <= 10 %", 0.10, r.crack_share[k],
+                      "[Li2018]: each shear class <= 10 %", 0.10, r.crack_share[k],
                       r.crack_share[k] <= 0.10 ? 0.0 : (r.crack_share[k] - 0.10) / 0.10, 0.0,
                       settings, r.seconds});
   }
@@ -204,7 +204,7 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
   rows.push_back(
       {"B5",
        fmt::format("intergranular tensile share at the highest rate ({:.0f} 1/s)", fastest.rate),
-       "paper 003: falls to 29.2 % at 334 1/s", 0.292, fastest.crack_share[0],
+       "[Li2018]: falls to 29.2 % at 334 1/s", 0.292, fastest.crack_share[0],
        std::abs(fastest.crack_share[0] - 0.292) / 0.292, 0.34,
        "models/shpb_granite.toml, striker 50 m/s", fastest.seconds});
   int failed = 0;
@@ -242,7 +242,7 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
         shown(r.block_strength / r.strength, "{:.3f}"), shown(r.block_rate, "{:.1f}"),
         shown(r.block_strength / v.static_strength, "{:.2f}"), r.seconds, r.block_seconds);
   }
-  out << "\nThe pulse's rise time at 10 m/s (the model's 30 us is an assumption: paper 003 gives "
+  out << "\nThe pulse's rise time at 10 m/s (the model's 30 us is an assumption: [Li2018] gives "
          "no pulse shape):\n\n| rise time (us) | strength (MPa) | mean rate (1/s) | max eta, half "
          "peak to peak | eta at peak | equilibrium from (us) | wall time |\n"
          "|---|---|---|---|---|---|---|\n";

@@ -1,9 +1,9 @@
 #pragma once
-// The corrosion mode (stages with corrosion = true). A corrosion stage's time advancement (PHYSICS
-// 13; POT07's psc.fis, paper 000 Fig. 9). At each equilibrium under the held stress: every
-// corroding bond's time to failure, forces held; one corrosion step for all; the degraded bonds. A
-// specimen that finds no equilibrium within max_equilibrium_steps has collapsed: the corrosion time
-// of its last equilibrium is its failure time.
+// The corrosion mode (stages with corrosion = true). A corrosion stage's time advancement
+// (docs/theory.md §14.4; [Potyondy2007]'s psc.fis, [Liu2020] Fig. 9). At each equilibrium under the
+// held stress: every corroding bond's time to failure, forces held; one corrosion step for all; the
+// degraded bonds. A specimen that finds no equilibrium within max_equilibrium_steps has collapsed:
+// the corrosion time of its last equilibrium is its failure time.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -33,9 +33,9 @@ struct CorrosionStageReport {
   long active_bonds = 0, active_contacts = 0;               // corroding at the last corrosion step
 };
 
-// The corrosion step (POT07): the shortest estimated time to failure / n_c at first, doubled
-// after n_c steps without a break, estimated afresh after one; never past the next estimated
-// failure, so the bond that fails first fails at its estimated time.
+// The corrosion step ([Potyondy2007]): the shortest estimated time to failure / n_c at first,
+// doubled after n_c steps without a break, estimated afresh after one; never past the next
+// estimated failure, so the bond that fails first fails at its estimated time.
 class CorrosionClock {
  public:
   explicit CorrosionClock(double n_c) : n_c_(n_c) {}

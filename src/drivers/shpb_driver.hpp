@@ -1,5 +1,5 @@
 #pragma once
-// The split Hopkinson pressure bar test (PHYSICS 15), with either bar representation:
+// The split Hopkinson pressure bar test (docs/theory.md §16.2), with either bar representation:
 // - exact 1D elastic bars (loading/pressure_bar.hpp) whose faces are the platens: in every step
 //   the solver's face control reads the specimen's force on each platen, records it as the bar
 //   face's stress, and gives the platen the face's velocity for the step. Time 0 is the incident

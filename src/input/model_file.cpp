@@ -452,9 +452,10 @@ void read_corrosion_stage(TomlSection& sec, loading::Stage& st, const ModelConfi
   const std::string held = "held";
   const std::string ttf = sec.string("time_to_failure", &held);
   if (ttf != "held" && ttf != "frozen")
-    sec.fail("time_to_failure", fmt::format("must be \"held\" (forces held, integrated) or "
-                                            "\"frozen\" (the rate frozen, POT07) (got \"{}\")",
-                                            ttf));
+    sec.fail("time_to_failure",
+             fmt::format("must be \"held\" (forces held, integrated) or "
+                         "\"frozen\" (the rate frozen, [Potyondy2007]) (got \"{}\")",
+                         ttf));
   c.frozen_rate = ttf == "frozen";
   c.equilibrium_ratio = sec.positive("equilibrium_ratio", c.equilibrium_ratio);
   c.check_interval = sec.integer("check_interval", c.check_interval, 1);
@@ -472,7 +473,8 @@ void read_corrosion_stage(TomlSection& sec, loading::Stage& st, const ModelConfi
     sec.fail("control", "corrosion stages need rigid blocks ([blocks] deformable = false)");
 }
 
-// [corrosion]: the constants of the two layers (PHYSICS 13; paper 000 Table 4 for LdB granite).
+// [corrosion]: the constants of the two layers (docs/theory.md §14; [Liu2020] Table 4 for LdB
+// granite).
 void read_corrosion(TomlSection sec, TomlSection& top, ModelConfig& cfg) {
   if (!cfg.grains)
     top.fail("corrosion",

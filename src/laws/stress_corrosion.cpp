@@ -7,7 +7,7 @@ namespace vorodec::laws {
 double min_bonded_length(const BondedLength& law, const BondSection& s, const BondStrength& b,
                          double d0) {
   double d_min = law.xi_a * d0;
-  // Tension: the positive root of sigma_s D^2 xi^2 + Fn D xi - bending |M| = 0 (paper 000,
+  // Tension: the positive root of sigma_s D^2 xi^2 + Fn D xi - bending |M| = 0 ([Liu2020],
   // eq. 18, where bending = 6).
   if (b.tension > 0.0) {
     const double disc = s.fn * s.fn + 4.0 * s.bending * std::abs(s.m) * b.tension;

@@ -11,9 +11,9 @@ namespace vorodec::model {
 
 namespace {
 
-// Rounded-corner arc (PHYSICS 2.2: tangent to both edges, radius d tan(beta/2) capped at 4d as in
-// model/build.cpp) from the unit directions u (to the previous corner) and w (to the next), without
-// trigonometry (this runs for every boundary gridpoint every step): tan(beta/2) = |u - w| /
+// Rounded-corner arc (docs/theory.md §5.2: tangent to both edges, radius d tan(beta/2) capped at 4d
+// as in model/build.cpp) from the unit directions u (to the previous corner) and w (to the next),
+// without trigonometry (this runs for every boundary gridpoint every step): tan(beta/2) = |u - w| /
 // |u + w|, and the centre lies at R / sin(beta/2) along the inward bisector, i.e. at
 // R perp(w - u) / (1 - u.w) with 1 - u.w = |u - w|^2 / 2. Boundary gridpoints along an edge form
 // straight (180 degree) corners: there |u + w| is round-off, so the radius takes the cap, where

@@ -390,7 +390,7 @@ struct NarrowPhase {
         kept_origin.push_back(-1);
       }
       // Rigid blocks: at least 2d per contact. Deformable blocks: the gridpoint spacing, which
-      // zoning finer than 2d would otherwise inflate (PHYSICS 7).
+      // zoning finer than 2d would otherwise inflate (docs/theory.md §4.4).
       if (kept.size() > n_kept)
         assign_lengths(kept, d, bl.deformable[pa] || bl.deformable[pb] ? 0.0 : 2.0 * d);
       for (std::size_t i = 0; i < kept.size(); ++i) {

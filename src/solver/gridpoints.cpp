@@ -1,5 +1,5 @@
-// The gridpoints of deformable blocks (PHYSICS 6.2, 7): their critical time step and density
-// scaling, and their integration with zone and contact forces.
+// The gridpoints of deformable blocks (docs/theory.md §9.2, 4): their critical time step and
+// density scaling, and their integration with zone and contact forces.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -38,7 +38,7 @@ double Solver::gridpoint_time_step() {
   double dt = std::numeric_limits<double>::max();
   for (std::size_t g = 0; g < z.gridpoints(); ++g) {
     if (z.prescribed[g] || k[g] == 0.0) continue;
-    if (target > 0.0)  // density scaling (PHYSICS 6.3)
+    if (target > 0.0)  // density scaling (docs/theory.md §9.3)
       z.mass[g] = std::max(z.gravity_mass[g], k[g] * target * target / (4.0 * s * s));
     // Gershgorin: no eigenvalue of M^-1 K exceeds max k/m, so 2 sqrt(m/k) is stable.
     dt = std::min(dt, 2.0 * std::sqrt(z.mass[g] / k[g]));

@@ -318,9 +318,9 @@ struct Works {
   double boundary = 0, body = 0, damping = 0;
 };
 
-// Central difference with local damping (PHYSICS 5). Branch-free over prescribed blocks so that a
-// rigid-only model's loop vectorises; `zoned` skips deformable blocks (they move with their
-// gridpoints, integrate_gridpoints).
+// Central difference with local damping (docs/theory.md §3.3, 8.1). Branch-free over prescribed
+// blocks so that a rigid-only model's loop vectorises; `zoned` skips deformable blocks (they move
+// with their gridpoints, integrate_gridpoints).
 template <bool zoned>
 Works integrate_blocks(const BlockArrays a, std::int64_t nb, double alpha, double dt, Point g) {
   double w_boundary = 0, w_body = 0, w_damp = 0;

@@ -1,5 +1,5 @@
 // A10: one Burger's contact under a constant force against the analytic creep curve
-// u(t) = F/Km + F t/Cm + F/Kk (1 - exp(-Kk t/Ck)) (docs/theory.md), normal and shear.
+// u(t) = F/Km + F t/Cm + F/Kk (1 - exp(-Kk t/Ck)) (docs/theory.md §13.2), normal and shear.
 #include <chrono>
 #include <cmath>
 

@@ -102,7 +102,7 @@ std::vector<CaseResult> deformable_column(double h) {
     if (top_platen) model::add_block(*m, slab(H, H + 0.02), rho, Group::top_platen);
     return m;
   };
-  // Frictionless platens, joints 10x stiffer than the zones (docs/theory.md: (K + 4G/3)/dz).
+  // Frictionless platens, joints 10x stiffer than the zones (docs/theory.md §4.4: (K + 4G/3)/dz).
   const double jkn = 10 * (mat.lambda() + 2 * mat.shear_modulus()) / h;
   const auto law = params({{"jkn", jkn},
                            {"jks", 0},

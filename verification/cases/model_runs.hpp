@@ -41,7 +41,7 @@ struct CaseResult;
 // A row judged by its relative error |measured - expected| / |expected| (1 when not finite).
 CaseResult relative(std::string id, std::string name, std::string reference, double expected,
                     double measured, double tolerance, std::string settings, double seconds);
-// Energy balance at the end of a run (docs/theory.md), from the last row of its history:
+// Energy balance at the end of a run (docs/theory.md §12), from the last row of its history:
 // (boundary work - strain - kinetic - damping - friction - breakage) / boundary work, judged at
 // 1 %.
 CaseResult energy_balance(const std::string& id, const ModelRun& run, const std::string& settings);

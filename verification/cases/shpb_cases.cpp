@@ -1,4 +1,4 @@
-// Split Hopkinson pressure bars (docs/theory.md): the exact bars against the
+// Split Hopkinson pressure bars (docs/theory.md §16): the exact bars against the
 // striker's analytic pulse, full transmission from bar to bar, and the granite under impact.
 #include <fmt/format.h>
 
@@ -59,7 +59,7 @@ std::vector<CaseResult> a12_exact_bar() {
       "from the face, sampled every {:.3g} s",
       ls, v, x, h);
   const double sec = seconds_since(t0);
-  return {{"A12", "exact bar: incident stress (Pa)", "rho c0 v / 2 (docs/theory.md)", sigma0,
+  return {{"A12", "exact bar: incident stress (Pa)", "rho c0 v / 2 (docs/theory.md §16.1)", sigma0,
            plateau, std::abs(plateau - sigma0) / sigma0, 0.01, settings, sec},
           {"A12", "exact bar: pulse duration (s)", "2 L_striker / c0", duration, measured,
            std::abs(measured - duration) / duration, 0.02,
@@ -126,8 +126,8 @@ std::vector<CaseResult> a12_block_bars(const std::string& source_dir, const std:
       "models/shpb_granite.toml, bars = \"blocks\" (5 mm blocks), square pulse, striker 0.27 m at "
       "2 m/s, gauge 0.75 m from the face; the pulse enters through the quiet far end";
   std::vector<CaseResult> rows{
-      {"A12", "block bar: incident stress (Pa)", "rho c0 v / 2 (docs/theory.md)", sigma0, stress,
-       std::abs(stress - sigma0) / sigma0, 0.01, settings, a.seconds},
+      {"A12", "block bar: incident stress (Pa)", "rho c0 v / 2 (docs/theory.md §16.1)", sigma0,
+       stress, std::abs(stress - sigma0) / sigma0, 0.01, settings, a.seconds},
       {"A12", "block bar: pulse duration (s)", "2 L_striker / c0", duration, measured,
        std::abs(measured - duration) / duration, 0.02, settings + "; half-amplitude crossings",
        a.seconds}};

@@ -1,4 +1,4 @@
-// Waves and quiet boundaries (docs/theory.md): P-wave speed in a row of rigid
+// Waves and quiet boundaries (docs/theory.md §15): P-wave speed in a row of rigid
 // blocks and in a Voronoi bar, and the energy a quiet boundary reflects.
 #include <fmt/format.h>
 
@@ -122,7 +122,7 @@ std::vector<CaseResult> a9_row_of_blocks() {
       for (const double v : r.v[0]) peak = std::max(peak, v);
       CaseResult in{"A9",
                     "input through the quiet end: incident particle velocity / v_in",
-                    "sigma = 2 rho c v_in on a dashpot rho c gives v = v_in (docs/theory.md)",
+                    "sigma = 2 rho c v_in on a dashpot rho c gives v = v_in (docs/theory.md §15.2)",
                     1.0,
                     peak,
                     std::abs(peak - 1.0),

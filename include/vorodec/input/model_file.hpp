@@ -54,7 +54,8 @@ struct GrainConfig {
   std::vector<Pair> pairs;
 };
 
-// [corrosion]: the stress-corrosion layers of a grain-based specimen (PHYSICS 13; paper 000).
+// [corrosion]: the stress-corrosion layers of a grain-based specimen (docs/theory.md §14;
+// [Liu2020]).
 struct CorrosionConfig {
   laws::DrivingRate rate;        // beta1(rs): m/s for bonded lengths
   double beta3_per_beta1 = 1.0;  // 1/m: beta3 (1/s, strength factors) = this x beta1
@@ -65,11 +66,12 @@ struct CorrosionConfig {
 };
 
 // [quiet_boundary]: viscous boundaries on sides of the specimen's outline, and a half-sine
-// particle-velocity pulse entering through one side (loading/quiet_boundary.hpp, PHYSICS 14).
+// particle-velocity pulse entering through one side (loading/quiet_boundary.hpp,
+// docs/theory.md §15.2).
 struct QuietBoundaryConfig {
   std::vector<loading::Side> sides;  // absorbing
   // m/s; 0: a row of rigid blocks' sqrt(jkn d / density) and sqrt(jks d / density), d the mean
-  // block size (VERIFICATION A9)
+  // block size (verification case A9)
   double p_wave_speed = 0, s_wave_speed = 0;
   std::optional<loading::Side> input_side;  // drives and absorbs
   double input_velocity = 0;                // m/s, peak of the half-sine
@@ -78,8 +80,8 @@ struct QuietBoundaryConfig {
 };
 
 // [shpb]: a split Hopkinson pressure bar test instead of [[stage]]s (loading/pressure_bar.hpp,
-// PHYSICS 15): a striker hits the incident bar, whose face is the top platen; the transmitted
-// bar's face is the bottom platen. Time 0 is the pulse's arrival at the specimen.
+// docs/theory.md §16): a striker hits the incident bar, whose face is the top platen; the
+// transmitted bar's face is the bottom platen. Time 0 is the pulse's arrival at the specimen.
 struct ShpbConfig {
   loading::BarProperties incident, transmitted;
   std::vector<double> incident_gauges, transmitted_gauges;  // m from the specimen face
@@ -104,7 +106,8 @@ struct OutputSettings {
   double checkpoint_wall_time = 600.0;  // s of wall time between checkpoints; 0: none by time
   // Acoustic-emission events (ae_events.csv): cracks within ae_radius m of each other, each
   // within ae_radius / ae_shear_wave_speed s of the last, are one event. 0: two mean block
-  // sizes, and the shear-wave speed of a row of blocks sqrt(jks d / density) (PHYSICS 14).
+  // sizes, and the shear-wave speed of a row of blocks sqrt(jks d / density)
+  // (docs/theory.md §15.4).
   double ae_radius = 0.0;
   double ae_shear_wave_speed = 0.0;
 };
@@ -134,7 +137,7 @@ struct ModelConfig {
   double rounding_length = 0;        // m
   LawChoice joints;  // specimen block to block (grain-based: the default intergranular law)
   // [joints.mix]: this fraction of the specimen's joints (block pairs, drawn at random from the
-  // seed) take a second law (paper 001's reading (b): Burger's and bonded contacts side by side).
+  // seed) take a second law ([Guo2020]'s reading (b): Burger's and bonded contacts side by side).
   struct JointMix {
     double fraction = 0;  // -, in (0, 1)
     LawChoice law;

@@ -1,5 +1,5 @@
 #pragma once
-// Burger's contact (PHYSICS section 12; PFC's Burger's model, paper 001): in the normal and in the
+// Burger's contact (docs/theory.md §13; PFC's Burger's model, [Guo2020]): in the normal and in the
 // shear direction a Kelvin element (Kk, Ck in parallel) in series with a Maxwell element (Km, Cm
 // in series), integrated by the trapezoidal rule, with the Mohr-Coulomb strength layer on the
 // same contact: tension cut-off, cohesion and the friction slider.
@@ -18,9 +18,9 @@ struct BurgersChain {
   double km, cm, kk, ck;  // N/m and N s/m (per contact: per unit length x length)
 };
 
-// Step coefficients of PHYSICS 12 for one direction and time step: with A = 1 + Kk dt / (2 Ck),
-// B = 1 - Kk dt / (2 Ck), the force line f1 = (du + (1 - B/A) uk - D f0) / C and the Kelvin line
-// uk1 = (B uk + dt / (2 Ck) (f0 + f1)) / A.
+// Step coefficients of docs/theory.md §13.2 for one direction and time step: with
+// A = 1 + Kk dt / (2 Ck), B = 1 - Kk dt / (2 Ck), the force line
+// f1 = (du + (1 - B/A) uk - D f0) / C and the Kelvin line uk1 = (B uk + dt / (2 Ck) (f0 + f1)) / A.
 struct BurgersStep {
   double b_over_a, half_dt_ck_a, half_dt_cm, c, d;
   BurgersStep(const BurgersChain& e, double dt)

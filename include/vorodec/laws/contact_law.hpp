@@ -97,7 +97,7 @@ struct NewContact {
   bool bonded;
   // m, gap at which the normal spring is unloaded: 0, except for a contact that appears during
   // the run already overlapping, whose force starts at zero (as UDEC's incremental contacts do)
-  // so that detection never creates strain energy (PHYSICS section 10).
+  // so that detection never creates strain energy (docs/theory.md §12).
   double spring_origin;
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// The strength layer every bonded law shares (PHYSICS section 4): a tension cut-off and a Coulomb
+// The strength layer every bonded law shares (docs/theory.md §6.2): a tension cut-off and a Coulomb
 // slider with cohesion, both lost at failure, then residual friction. A law computes its trial
 // forces with its own elastic part and passes them through these checks.
 #include <algorithm>

@@ -111,11 +111,11 @@ class LawGroupOf final : public LawGroup {
       step_range<false>(ctx, begin, end);
   }
 
-  // Contacts with a deformable side (PHYSICS 7): the corner side moves with its gridpoint, the
-  // edge side with its two gridpoints interpolated at the contact point, and their force goes to
-  // the same gridpoints with the same weights. Two passes, so that every gridpoint and block sum
-  // adds its forces in contact order whatever the thread count: the laws in parallel parts, then
-  // the forces and dissipation added in order (a few additions per contact).
+  // Contacts with a deformable side (docs/theory.md §4.4): the corner side moves with its
+  // gridpoint, the edge side with its two gridpoints interpolated at the contact point, and their
+  // force goes to the same gridpoints with the same weights. Two passes, so that every gridpoint
+  // and block sum adds its forces in contact order whatever the thread count: the laws in parallel
+  // parts, then the forces and dissipation added in order (a few additions per contact).
   void step_deformable(StepContext& ctx, std::size_t begin, std::size_t end) override {
     const int chunks = ctx.chunks;
     outcomes_.resize(end - begin);

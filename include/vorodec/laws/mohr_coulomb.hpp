@@ -1,6 +1,6 @@
 #pragma once
 // Coulomb slip joint with tension cut-off, cohesion, dilation and residual strength
-// (PHYSICS section 4; UDEC "Coulomb slip with residual strength", 3DEC Mohr-Coulomb joint).
+// (docs/theory.md §6.2; UDEC "Coulomb slip with residual strength", 3DEC Mohr-Coulomb joint).
 #include <algorithm>
 #include <array>
 #include <cmath>

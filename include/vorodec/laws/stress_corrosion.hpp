@@ -1,8 +1,8 @@
 #pragma once
-// The two stress-corrosion degradation layers (PHYSICS 13; POT07's PSC, paper 000's GSC). Each
-// sits on a bonded Mohr-Coulomb contact and changes only what the strength layer
-// (coulomb_strength.hpp) reads: a layer gives the contact's corrosion rate, how far it can degrade
-// before one of its break conditions is met (forces held), and the degraded section.
+// The two stress-corrosion degradation layers (docs/theory.md §14; [Potyondy2007]'s PSC,
+// [Liu2020]'s GSC). Each sits on a bonded Mohr-Coulomb contact and changes only what the strength
+// layer (coulomb_strength.hpp) reads: a layer gives the contact's corrosion rate, how far it can
+// degrade before one of its break conditions is met (forces held), and the degraded section.
 #include <cmath>
 #include <limits>
 #include <span>
@@ -10,7 +10,7 @@
 
 namespace vorodec::laws {
 
-// beta1(rs) = (beta_up - beta_low) / (1 + exp(k_v (rs - r_mid))) + beta_low (paper 000, eq. 6):
+// beta1(rs) = (beta_up - beta_low) / (1 + exp(k_v (rs - r_mid))) + beta_low ([Liu2020], eq. 6):
 // the rate constant of a corrosion stage at driving-stress ratio rs; k_v < 0 makes it rise with rs.
 struct DrivingRate {
   double beta_up, beta_low, r_mid, k_v;
@@ -119,8 +119,8 @@ double min_strength_factor(const StrengthDegradation& law, const ContactStress& 
                            const InitialStrength& p);
 
 // --- Integrating a layer with its forces held ---
-// s, time to reach `floor` from `value` at a constant `rate` (per s); infinity at rate 0 (POT07's
-// estimate: the rate frozen where it is).
+// s, time to reach `floor` from `value` at a constant `rate` (per s); infinity at
+// rate 0 ([Potyondy2007]'s estimate: the rate frozen where it is).
 inline double time_to(double value, double floor, double rate) {
   if (rate <= 0.0) return std::numeric_limits<double>::infinity();
   return std::max(value - floor, 0.0) / rate;

@@ -48,7 +48,7 @@ struct CreepSettings {
   long interval_steps = 100;
 };
 
-// A corrosion stage (static fatigue, PHYSICS 13): an axial-stress servo holds
+// A corrosion stage (static fatigue, docs/theory.md §14.4): an axial-stress servo holds
 // sigma1 = sigma3 + rs (sf - sigma3); at each equilibrium the stress-corrosion layers advance the
 // corrosion clock by one step (app/corrosion_control).
 struct CorrosionSettings {
@@ -56,10 +56,11 @@ struct CorrosionSettings {
   double driving_stress_ratio = 0.0;  // -, rs in (0, 1)
   double peak_stress = 0.0;           // Pa, sf: short-term peak axial stress at this confinement
   // n_c: the first corrosion step is the shortest estimated time to failure / n_c; after n_c
-  // steps without a break the step doubles; a break starts again from an estimate (POT07).
+  // steps without a break the step doubles; a break starts again from an estimate ([Potyondy2007]).
   double steps_per_failure = 4.0;
   // Time to failure and degradation over a step with each bond's forces held: integrated exactly
-  // (laws::held_time), or with the rate frozen at its start (POT07's estimate, frozen_rate).
+  // (laws::held_time), or with the rate frozen at its start ([Potyondy2007]'s estimate,
+  // frozen_rate).
   bool frozen_rate = false;
   double equilibrium_ratio = 1e-4;      // -, unbalanced-force ratio of an equilibrium
   long check_interval = 50;             // steps between equilibrium checks

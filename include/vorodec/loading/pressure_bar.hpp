@@ -1,8 +1,8 @@
 #pragma once
-// Exact 1D elastic pressure bars (PHYSICS 15): a bar carries two waves, one towards the specimen
-// face and one away from it, each travelling unchanged at c0 = sqrt(E / rho) (d'Alembert). The
-// bar keeps the history of the wave its face emits and of the wave its far end emits; the stress
-// anywhere at any past time follows from the two, so there is no grid and no dispersion.
+// Exact 1D elastic pressure bars (docs/theory.md §16.1): a bar carries two waves, one towards the
+// specimen face and one away from it, each travelling unchanged at c0 = sqrt(E / rho) (d'Alembert).
+// The bar keeps the history of the wave its face emits and of the wave its far end emits; the
+// stress anywhere at any past time follows from the two, so there is no grid and no dispersion.
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -63,9 +63,9 @@ class ElasticBar {
 };
 
 // The stress a striker of length ls m and speed v m/s, of the incident bar's material, sends into
-// it from impact time t0 s: rho c0 v / 2 for 2 ls / c0 (VERIFICATION A12); then it has separated.
-// rise > 0 s: the pulse rises and falls linearly over that time within the same duration (a
-// pulse shaper's ramp).
+// it from impact time t0 s: rho c0 v / 2 for 2 ls / c0 (verification case A12); then it has
+// separated. rise > 0 s: the pulse rises and falls linearly over that time within the same duration
+// (a pulse shaper's ramp).
 std::function<double(double)> striker_pulse(const BarProperties& bar, double ls, double v,
                                             double t0, double rise = 0.0);
 

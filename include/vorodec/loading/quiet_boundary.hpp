@@ -1,8 +1,8 @@
 #pragma once
 // Quiet (viscous, Lysmer-Kuhlemeyer) boundaries on chosen outline edges of rigid blocks, and a
-// stress history applied through them (PHYSICS 8, 14): dashpots rho c_p and rho c_s per unit
-// area absorb the waves that reach the edge; an input particle velocity v_in(t) enters as the
-// traction 2 rho c v_in, the factor 2 offsetting the dashpot, so the edge drives and absorbs.
+// stress history applied through them (docs/theory.md §15.1, 15.2): dashpots rho c_p and rho c_s
+// per unit area absorb the waves that reach the edge; an input particle velocity v_in(t) enters as
+// the traction 2 rho c v_in, the factor 2 offsetting the dashpot, so the edge drives and absorbs.
 #include <functional>
 #include <vector>
 

@@ -1,8 +1,8 @@
 #pragma once
-// Acoustic emission from cracks (PHYSICS 14, after Hazzard & Young): cracks close in space and
-// time are one event. A crack joins an open event when it lies within `radius` of one of the
-// event's cracks and follows the event's last crack within radius / shear_wave_speed, the time a
-// shear wave needs to cross that distance; an event no crack has joined for that long is closed.
+// Acoustic emission from cracks (docs/theory.md §15.4, after Hazzard & Young): cracks close in
+// space and time are one event. A crack joins an open event when it lies within `radius` of one of
+// the event's cracks and follows the event's last crack within radius / shear_wave_speed, the time
+// a shear wave needs to cross that distance; an event no crack has joined for that long is closed.
 #include <cstddef>
 #include <span>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Per-cycle measures of a cyclic load path from its history rows (the marble study, paper 004):
+// Per-cycle measures of a cyclic load path from its history rows (the marble study, [Yu2023]):
 // secant modulus, generalized Poisson's ratio, input / recovered / dissipated energy, residual
 // strain.
 #include <span>

@@ -1,6 +1,6 @@
 #pragma once
 // Stages I-IV of a monotonic loading (elastic, stable crack growth, accelerating crack growth,
-// post-peak) from the contact failure rate, as the marble study (paper 004, Fig. 6) reads them.
+// post-peak) from the contact failure rate, as the marble study ([Yu2023], Fig. 6) reads them.
 #include <span>
 
 namespace vorodec::measure {

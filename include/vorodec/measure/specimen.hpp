@@ -1,6 +1,6 @@
 #pragma once
-// Specimen-scale stress and strain from platen reactions and boundary gauges (PHYSICS section 9),
-// in the rock-mechanics convention: compression and shortening positive.
+// Specimen-scale stress and strain from platen reactions and boundary gauges
+// (docs/theory.md §11.1), in the rock-mechanics convention: compression and shortening positive.
 #include <span>
 
 #include "vorodec/loading/boundary.hpp"

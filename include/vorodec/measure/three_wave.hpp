@@ -1,7 +1,7 @@
 #pragma once
-// Three-wave analysis of a split Hopkinson pressure bar test (PHYSICS 15; KOL49): the gauges'
-// incident, reflected and transmitted strains, shifted to the specimen faces, give the faces'
-// velocities and forces, hence the specimen's stress, strain rate and strain, and the
+// Three-wave analysis of a split Hopkinson pressure bar test (docs/theory.md §16.4; [Kolsky1949]):
+// the gauges' incident, reflected and transmitted strains, shifted to the specimen faces, give the
+// faces' velocities and forces, hence the specimen's stress, strain rate and strain, and the
 // stress-equilibrium factor. Compression and shortening positive.
 #include <span>
 #include <vector>

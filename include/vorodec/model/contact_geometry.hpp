@@ -1,6 +1,6 @@
 #pragma once
 // Gap, normal and contact point between a rounded corner and a block edge with rounded ends
-// (PHYSICS 2.2). Used by the step kernel and by contact detection.
+// (docs/theory.md §5.3). Used by the step kernel and by contact detection.
 #include <cmath>
 #include <limits>
 

@@ -1,7 +1,7 @@
 #pragma once
-// How a contact point moves on either body representation (PHYSICS 7): rigidly with its block, or
-// with the gridpoints of a deformable block (corner: its gridpoint; edge: its two end gridpoints
-// weighted by the contact point's position along the edge).
+// How a contact point moves on either body representation (docs/theory.md §4.4): rigidly with its
+// block, or with the gridpoints of a deformable block (corner: its gridpoint; edge: its two end
+// gridpoints weighted by the contact point's position along the edge).
 #include <algorithm>
 
 #include "vorodec/model/model.hpp"

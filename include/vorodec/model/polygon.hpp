@@ -1,5 +1,5 @@
 #pragma once
-// Mass properties of a simple polygon (PHYSICS 1.1, Steger 1996), unit thickness.
+// Mass properties of a simple polygon (docs/theory.md §3.1; [Steger1996]), unit thickness.
 #include <span>
 
 #include "vorodec/geometry/point.hpp"

@@ -1,6 +1,6 @@
 #pragma once
-// Deformable blocks (PHYSICS 7): each is zoned into constant-strain triangles whose corners are
-// gridpoints with lumped mass. Stress is linear elasticity (plane strain) in each zone's own
+// Deformable blocks (docs/theory.md §4): each is zoned into constant-strain triangles whose corners
+// are gridpoints with lumped mass. Stress is linear elasticity (plane strain) in each zone's own
 // frame (co-rotational, total): F = I + grad u over the initial zone, F = R U (polar
 // decomposition), Biot strain U - I, stress T = D (U - I), turned to the world as R T R^T. A
 // rigid rotation of any size is stress-free, a uniform strain gives exactly uniform stress (patch
@@ -35,7 +35,7 @@ struct Zone {
   double lambda, shear;          // Pa
 };
 
-// Tension positive (PHYSICS 0); zz is the out-of-plane stress of plane strain.
+// Tension positive (docs/theory.md §1.2); zz is the out-of-plane stress of plane strain.
 struct ZoneStress {
   double xx = 0, yy = 0, xy = 0, zz = 0;
 };
@@ -81,7 +81,7 @@ void refresh_deformable(Model& model);
 // into (out_fx, out_fy) (N per m).
 void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy);
 
-// N/m per gridpoint, the Gershgorin row bound of the zone stiffness (PHYSICS 6.2).
+// N/m per gridpoint, the Gershgorin row bound of the zone stiffness (docs/theory.md §9.2).
 std::vector<double> zone_stiffness_bound(const Zoning& z);
 
 // J per m, elastic strain energy held in the zones.

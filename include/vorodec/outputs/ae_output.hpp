@@ -12,7 +12,7 @@
 namespace vorodec::run {
 
 // The model file's [output] ae_radius and ae_shear_wave_speed, or their defaults from the mean
-// block size (m) and the joints' mean jks and the density (PHYSICS 14).
+// block size (m) and the joints' mean jks and the density (docs/theory.md §15.4).
 measure::AeSettings ae_settings(const io::ModelConfig& cfg, double mean_block_size,
                                 double thickness);
 

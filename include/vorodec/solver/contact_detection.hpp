@@ -1,6 +1,6 @@
 #pragma once
-// Cell-grid broad phase and rounded corner-edge narrow phase (PHYSICS 2.4). Keeps the state of
-// persisting contacts, drops separated ones (never intact bonded ones), creates new ones.
+// Cell-grid broad phase and rounded corner-edge narrow phase (docs/theory.md §5.5). Keeps the state
+// of persisting contacts, drops separated ones (never intact bonded ones), creates new ones.
 #include <array>
 #include <memory>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // Explicit central-difference integration of rigid blocks and of the gridpoints of deformable
-// blocks (src/solver/gridpoints.cpp) with Cundall local damping (PHYSICS 1.3, 5.1, 6, 7). Each
-// step: contact geometry -> laws -> block and gridpoint forces -> damping -> integration.
+// blocks (src/solver/gridpoints.cpp) with Cundall local damping (docs/theory.md §3.3, 8.1, 9, 4).
+// Each step: contact geometry -> laws -> block and gridpoint forces -> damping -> integration.
 #include <functional>
 #include <limits>
 #include <memory>
@@ -33,7 +33,7 @@ class InstabilityError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Energy terms summed since the start (J per m thickness), PHYSICS section 10.
+// Energy terms summed since the start (J per m thickness), docs/theory.md §12.
 struct Energy {
   double boundary_work = 0.0;
   double body_work = 0.0;
