@@ -13,6 +13,7 @@
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/geometry/grains.hpp"
 #include "vorodec/input/model_file.hpp"
+#include "vorodec/io/json.hpp"
 #include "vorodec/measure/grain_cracks.hpp"
 
 namespace {
@@ -223,14 +224,12 @@ TEST(Grains, CrackClassesSumToTheCrackCountInHistorySummaryAndCrackList) {
   const std::string json = slurp(out / "summary.json");
   const double tensile = json_number(json, "tensile"), shear = json_number(json, "shear");
   ASSERT_GT(tensile + shear, 20);
-  // Classes in summary.json: "<class>": {"count": n, ...}.
+  // Classes in summary.json: "crack_classes": {"<class>": {"count": n, ...}, ...}.
+  const vorodec::io::Json summary = vorodec::io::Json::parse(json);
   double classes = 0;
   for (const auto name : measure::kCrackClassNames) {
-    std::string quoted(1, '"');
-    quoted.append(name).push_back('"');
-    const auto at = json.find(quoted);
-    ASSERT_NE(at, std::string::npos) << name;
-    classes += json_number(json.substr(at), "count");
+    ASSERT_TRUE(summary.at("crack_classes").contains(name)) << name;
+    classes += summary["crack_classes"][std::string(name)]["count"].get<double>();
   }
   EXPECT_EQ(classes, tensile + shear);
   // history.csv: the last row's class counts (columns 17-20) sum to its tensile + shear (6, 7).

@@ -124,23 +124,9 @@ laws::ContactEvent tensile_or_shear(bool tensile) {
 }
 }  // namespace
 
-bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
-  const io::CorrosionConfig& cfg = config_;
-  const double beta1 = cfg.rate.at(stage_.corrosion.driving_stress_ratio);
-  const double beta3 = cfg.beta3_per_beta1 * beta1;
-  std::unordered_map<std::uint64_t, std::size_t> index;
-  for (std::size_t i = 0; i < model.contacts.size(); ++i) index[model.contacts[i].id] = i;
-  const model::CornerView corners = model.blocks.corners();
-  const auto live = [&](std::uint64_t id, std::size_t& i) {
-    const auto it = index.find(id);
-    if (it == index.end()) return false;
-    i = it->second;
-    laws::BondView b;
-    return model.contacts[i].state < model::ContactState::tensile_failed && solver.bond(i, b) &&
-           !b.broken;
-  };
-
-  // What each corroding item is now: its rate, its floor and its time to failure.
+// One corrosion step's working state: what each corroding item is now (its rate, its floor and its
+// time to failure), and the shortest time to failure of them all.
+struct CorrosionControl::Step {
   struct JointNow {
     std::vector<std::size_t> contacts;
     std::vector<laws::PairContact> pair;
@@ -149,57 +135,98 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
     double rate = 0, d_min = 0;
     bool fails = false, tensile = true;
   };
-  std::vector<JointNow> now(joints_.size());
-  std::vector<double> rate(bonds_.size() - inter_begin_, 0.0), floor(rate.size(), 0.0);
-  std::vector<std::uint8_t> fails(rate.size(), 0), tensile(rate.size(), 1);
-  std::vector<std::pair<laws::ContactStress, laws::InitialStrength>> stress(rate.size());
-  const bool frozen = stage_.corrosion.frozen_rate;
+
+  Step(const io::CorrosionConfig& config, const loading::CorrosionSettings& settings,
+       std::size_t joint_count, std::size_t contact_count, solver::Solver& s, model::Model& m)
+      : cfg(config),
+        beta1(cfg.rate.at(settings.driving_stress_ratio)),
+        beta3(cfg.beta3_per_beta1 * beta1),
+        frozen(settings.frozen_rate),
+        solver(s),
+        model(m),
+        corners(m.blocks.corners()),
+        now(joint_count),
+        rate(contact_count, 0.0),
+        floor(contact_count, 0.0),
+        fails(contact_count, 0),
+        tensile(contact_count, 1),
+        stress(contact_count) {
+    for (std::size_t i = 0; i < m.contacts.size(); ++i) index[m.contacts[i].id] = i;
+  }
+
+  // Whether contact `id` still holds its bond; then `i` is its index.
+  bool live(std::uint64_t id, std::size_t& i) const {
+    const auto it = index.find(id);
+    if (it == index.end()) return false;
+    i = it->second;
+    laws::BondView b;
+    return model.contacts[i].state < model::ContactState::tensile_failed && solver.bond(i, b) &&
+           !b.broken;
+  }
   // Each item's rate as its value falls with its forces held (laws::held_time).
-  const auto bond_rate = [&](const JointNow& jn) {
-    return [&cfg, beta1, &jn](double d) {
+  auto bond_rate(const JointNow& jn) const {
+    return [&cfg = cfg, beta1 = beta1, &jn](double d) {
       laws::BondSection s = jn.p.section;
       s.d = d;
       return laws::length_rate(cfg.bonded, beta1, s, jn.strength);
     };
-  };
-  const auto factor_rate = [&](std::size_t q) {
-    return [&cfg, beta3, &held = stress[q]](double lambda) {
+  }
+  auto factor_rate(std::size_t q) const {
+    return [&cfg = cfg, beta3 = beta3, &held = stress[q]](double lambda) {
       return laws::factor_rate(cfg.degradation, beta3,
                                laws::stress_level(held.first, held.second, lambda));
     };
-  };
+  }
+
+  const io::CorrosionConfig& cfg;
+  const double beta1, beta3;
+  const bool frozen;
+  solver::Solver& solver;
+  model::Model& model;
+  std::unordered_map<std::uint64_t, std::size_t> index;  // contact id -> index
+  const model::CornerView corners;
+  std::vector<JointNow> now;  // by joint
+  // By grain-boundary contact (bonds_[inter_begin_ + q]):
+  std::vector<double> rate, floor;
+  std::vector<std::uint8_t> fails, tensile;
+  std::vector<std::pair<laws::ContactStress, laws::InitialStrength>> stress;
   double shortest = std::numeric_limits<double>::infinity();
   bool broke = false;
-  const auto break_contacts = [&](const std::vector<std::size_t>& list, bool tension, long& n) {
-    for (const std::size_t i : list) {
-      solver.break_bond(i, tensile_or_shear(tension), report_.time);
-      ++n;
-    }
-    broke = true;
-  };
-  report_.active_bonds = report_.active_contacts = 0;
+};
 
+void CorrosionControl::break_contacts(Step& s, const std::vector<std::size_t>& list, bool tension,
+                                      long& n) {
+  for (const std::size_t i : list) {
+    s.solver.break_bond(i, tensile_or_shear(tension), report_.time);
+    ++n;
+  }
+  s.broke = true;
+}
+
+// A sub-block joint's section, strength, rate and time to failure; one whose contact has failed
+// (or that is past its strength) fails whole.
+void CorrosionControl::assess_joints(Step& s) {
   for (std::size_t j = 0; j < joints_.size(); ++j) {
     Joint& joint = joints_[j];
     if (joint.done) continue;
-    JointNow& jn = now[j];
+    Step::JointNow& jn = s.now[j];
     bool whole = true;
     model::Point tangent{0, 0};
     for (std::uint32_t k = joint.first; k < joint.first + joint.count; ++k) {
       std::size_t i = 0;
-      if (!live(bonds_[k].id, i)) {
+      if (!s.live(bonds_[k].id, i)) {
         whole = false;
         continue;
       }
-      model::Contact& c = model.contacts[i];
-      const model::ContactFrame f = model::contact_frame(corners, c);
+      model::Contact& c = s.model.contacts[i];
+      const model::ContactFrame f = model::contact_frame(s.corners, c);
       if (jn.contacts.empty()) tangent = {-f.n.y, f.n.x};
       jn.contacts.push_back(i);
       jn.pair.push_back({c.fn, c.fs, dot(f.point, tangent), c.length});
     }
     if (!whole) {  // one end already failed: the section has failed
       joint.done = 1;
-      if (!jn.contacts.empty()) break_contacts(jn.contacts, true, report_.broken_transgranular);
+      if (!jn.contacts.empty()) break_contacts(s, jn.contacts, true, report_.broken_transgranular);
       continue;
     }
     const Bond& first = bonds_[joint.first];
@@ -215,67 +242,82 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
       jn.tensile = laws::bond_tension(jn.p.section) >= jn.strength.tension;
       continue;
     }
-    jn.rate = laws::length_rate(cfg.bonded, beta1, jn.p.section, jn.strength);
+    jn.rate = laws::length_rate(s.cfg.bonded, s.beta1, jn.p.section, jn.strength);
     if (jn.rate == 0) continue;
-    jn.d_min = laws::min_bonded_length(cfg.bonded, jn.p.section, jn.strength, joint.d0);
-    shortest = std::min(shortest, frozen ? laws::time_to(joint.d, jn.d_min, jn.rate)
-                                         : laws::held_time(bond_rate(jn), joint.d, jn.d_min));
+    jn.d_min = laws::min_bonded_length(s.cfg.bonded, jn.p.section, jn.strength, joint.d0);
+    s.shortest =
+        std::min(s.shortest, s.frozen ? laws::time_to(joint.d, jn.d_min, jn.rate)
+                                      : laws::held_time(s.bond_rate(jn), joint.d, jn.d_min));
     ++report_.active_bonds;
   }
+}
+
+// A grain-boundary contact's stress level, rate, floor and time to failure.
+void CorrosionControl::assess_contacts(Step& s) {
   for (std::size_t k = inter_begin_; k < bonds_.size(); ++k) {
     Bond& b = bonds_[k];
     const std::size_t q = k - inter_begin_;
     std::size_t i = 0;
-    if (b.lambda <= 0 || !live(b.id, i)) continue;
-    const model::Contact& c = model.contacts[i];
+    if (b.lambda <= 0 || !s.live(b.id, i)) continue;
+    const model::Contact& c = s.model.contacts[i];
     const laws::ContactStress st{-c.fn / c.length, std::abs(c.fs) / c.length};
     const laws::InitialStrength p0{b.tension0 / c.length, b.cohesion0 / c.length, b.tan_phi};
     const double m = laws::stress_level(st, p0, b.lambda);
     if (m >= 1.0) {
-      fails[q] = 1;
-      tensile[q] = st.sigma > 0 && st.sigma >= b.lambda * p0.tension;
+      s.fails[q] = 1;
+      s.tensile[q] = st.sigma > 0 && st.sigma >= b.lambda * p0.tension;
       continue;
     }
-    rate[q] = laws::factor_rate(cfg.degradation, beta3, m);
-    if (rate[q] == 0) continue;
-    floor[q] = laws::min_strength_factor(cfg.degradation, st, p0);
-    tensile[q] = st.sigma > 0 && st.sigma / p0.tension >= (st.tau + st.sigma * p0.tan_phi) /
-                                                              std::max(p0.cohesion, 1e-300);
-    stress[q] = {st, p0};
-    shortest = std::min(shortest, frozen ? laws::time_to(b.lambda, floor[q], rate[q])
-                                         : laws::held_time(factor_rate(q), b.lambda, floor[q]));
+    s.rate[q] = laws::factor_rate(s.cfg.degradation, s.beta3, m);
+    if (s.rate[q] == 0) continue;
+    s.floor[q] = laws::min_strength_factor(s.cfg.degradation, st, p0);
+    s.tensile[q] = st.sigma > 0 && st.sigma / p0.tension >= (st.tau + st.sigma * p0.tan_phi) /
+                                                                std::max(p0.cohesion, 1e-300);
+    s.stress[q] = {st, p0};
+    s.shortest =
+        std::min(s.shortest, s.frozen ? laws::time_to(b.lambda, s.floor[q], s.rate[q])
+                                      : laws::held_time(s.factor_rate(q), b.lambda, s.floor[q]));
     ++report_.active_contacts;
   }
+}
 
-  // Bonds already past their strength (after the last equilibrium) break now, at no cost of time.
+// Bonds already past their strength (after the last equilibrium) break now, at no cost of time.
+void CorrosionControl::break_failed(Step& s) {
   for (std::size_t j = 0; j < joints_.size(); ++j)
-    if (now[j].fails) {
+    if (s.now[j].fails) {
       joints_[j].done = 1;
-      break_contacts(now[j].contacts, now[j].tensile, report_.broken_transgranular);
+      break_contacts(s, s.now[j].contacts, s.now[j].tensile, report_.broken_transgranular);
     }
   for (std::size_t k = inter_begin_; k < bonds_.size(); ++k) {
     const std::size_t q = k - inter_begin_;
     std::size_t i = 0;
-    if (fails[q] && live(bonds_[k].id, i)) {
+    if (s.fails[q] && s.live(bonds_[k].id, i)) {
       bonds_[k].lambda = 0;
-      break_contacts({i}, tensile[q], report_.broken_intergranular);
+      break_contacts(s, {i}, s.tensile[q], report_.broken_intergranular);
     }
   }
-  if (broke || !std::isfinite(shortest)) return broke;
+}
 
+// The corrosion step (s), never past the stage's duration; the clocks move on by it.
+double CorrosionControl::advance_clock(double shortest, solver::Solver& solver) {
   const double dt = std::min(clock_.next(shortest), stage_.corrosion.max_time - report_.time);
   report_.time += dt;
   report_.min_step = report_.corrosion_steps ? std::min(report_.min_step, dt) : dt;
   report_.max_step = std::max(report_.max_step, dt);
   ++report_.corrosion_steps;
   solver.set_crack_clock(report_.time);
+  return dt;
+}
 
+// Each joint's bonded length falls over dt: its contacts' springs, strengths and forces shrink
+// with it, or the joint fails at its floor.
+void CorrosionControl::shorten_joints(Step& s, double dt) {
   for (std::size_t j = 0; j < joints_.size(); ++j) {
-    JointNow& jn = now[j];
+    Step::JointNow& jn = s.now[j];
     Joint& joint = joints_[j];
     if (joint.done || jn.rate == 0) continue;
-    const double d = frozen ? joint.d - jn.rate * dt
-                            : laws::held_value_after(bond_rate(jn), joint.d, jn.d_min, dt);
+    const double d = s.frozen ? joint.d - jn.rate * dt
+                              : laws::held_value_after(s.bond_rate(jn), joint.d, jn.d_min, dt);
     if (d <= jn.d_min + 1e-9 * joint.d0) {
       joint.done = 1;
       const laws::BondSection& sec = jn.p.section;
@@ -284,38 +326,54 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
           jn.strength.cohesion > 0 &&
           std::abs((std::abs(sec.fs) - sec.fn * jn.strength.tan_phi) / jn.strength.cohesion -
                    jn.d_min) <= 1e-12 * joint.d0;
-      break_contacts(jn.contacts, !shear, report_.broken_transgranular);
+      break_contacts(s, jn.contacts, !shear, report_.broken_transgranular);
       continue;
     }
     const double xi = d / joint.d, total = d / joint.d0;
     const std::vector<laws::PairContact> shrunk = laws::shrink_pair(jn.pair, jn.p, xi);
     for (std::size_t n = 0; n < jn.contacts.size(); ++n) {
       const Bond& b = bonds_[joint.first + n];
-      solver.set_bond(
+      s.solver.set_bond(
           jn.contacts[n],
           {total * b.kn0, total * b.ks0, total * b.tension0, total * b.cohesion0, b.tan_phi, false},
           shrunk[n].fn, shrunk[n].fs);
     }
     joint.d = d;
   }
+}
+
+// Each grain-boundary contact's strength factor falls over dt, or the contact fails at its floor.
+void CorrosionControl::weaken_contacts(Step& s, double dt) {
   for (std::size_t k = inter_begin_; k < bonds_.size(); ++k) {
     const std::size_t q = k - inter_begin_;
     Bond& b = bonds_[k];
     std::size_t i = 0;
-    if (rate[q] == 0 || !live(b.id, i)) continue;
-    b.lambda = frozen ? b.lambda - rate[q] * dt
-                      : laws::held_value_after(factor_rate(q), b.lambda, floor[q], dt);
-    if (b.lambda <= floor[q] + 1e-9) {
+    if (s.rate[q] == 0 || !s.live(b.id, i)) continue;
+    b.lambda = s.frozen ? b.lambda - s.rate[q] * dt
+                        : laws::held_value_after(s.factor_rate(q), b.lambda, s.floor[q], dt);
+    if (b.lambda <= s.floor[q] + 1e-9) {
       b.lambda = 0;
-      break_contacts({i}, tensile[q], report_.broken_intergranular);
+      break_contacts(s, {i}, s.tensile[q], report_.broken_intergranular);
       continue;
     }
-    const model::Contact& c = model.contacts[i];
-    solver.set_bond(i,
-                    {b.kn0, b.ks0, b.lambda * b.tension0, b.lambda * b.cohesion0, b.tan_phi, false},
-                    c.fn, c.fs);
+    const model::Contact& c = s.model.contacts[i];
+    s.solver.set_bond(
+        i, {b.kn0, b.ks0, b.lambda * b.tension0, b.lambda * b.cohesion0, b.tan_phi, false}, c.fn,
+        c.fs);
   }
-  return broke;
+}
+
+bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
+  Step s(config_, stage_.corrosion, joints_.size(), bonds_.size() - inter_begin_, solver, model);
+  report_.active_bonds = report_.active_contacts = 0;
+  assess_joints(s);
+  assess_contacts(s);
+  break_failed(s);
+  if (s.broke || !std::isfinite(s.shortest)) return s.broke;
+  const double dt = advance_clock(s.shortest, solver);
+  shorten_joints(s, dt);
+  weaken_contacts(s, dt);
+  return s.broke;
 }
 
 void CorrosionMode::begin_stage(const StageContext& c) {
@@ -414,21 +472,11 @@ void CorrosionMode::summarise(io::Json& summary) const {
 }
 
 void CorrosionMode::save(checkpoint::OutArchive& ar) const {
-  const bool active = control_.has_value();
-  ar(active);
-  if (active) ar(*control_);
-  save_stage_reports(ar, reports_);
+  save_mode_state(ar, control_, reports_);
 }
 
 void CorrosionMode::load(checkpoint::InArchive& ar, const loading::Stage& current) {
-  bool active = false;
-  ar(active);
-  control_.reset();
-  if (active) {
-    control_.emplace(current, *cfg_.corrosion);  // its state follows
-    ar(*control_);
-  }
-  load_stage_reports(ar, reports_);
+  load_mode_state(ar, control_, reports_, current, *cfg_.corrosion);
 }
 
 }  // namespace vorodec::run

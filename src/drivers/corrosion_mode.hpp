@@ -85,6 +85,15 @@ class CorrosionControl {
     std::uint8_t done;
   };
   bool corrode(solver::Solver& solver, model::Model& model);  // one step; true if a bond broke
+  // corrode()'s steps, in order, on the step's working state (corrosion_mode.cpp).
+  struct Step;
+  void assess_joints(Step& s);    // each joint's state now and its time to failure
+  void assess_contacts(Step& s);  // each grain-boundary contact's
+  void break_failed(Step& s);     // those already past their strength break
+  double advance_clock(double shortest, solver::Solver& solver);  // s, the step taken
+  void shorten_joints(Step& s, double dt);
+  void weaken_contacts(Step& s, double dt);
+  void break_contacts(Step& s, const std::vector<std::size_t>& list, bool tension, long& n);
 
   const loading::Stage& stage_;
   const io::CorrosionConfig& config_;

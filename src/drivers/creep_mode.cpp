@@ -133,21 +133,11 @@ void CreepMode::summarise(io::Json& summary) const {
 }
 
 void CreepMode::save(checkpoint::OutArchive& ar) const {
-  const bool active = control_.has_value();
-  ar(active);
-  if (active) ar(*control_);
-  save_stage_reports(ar, reports_);
+  save_mode_state(ar, control_, reports_);
 }
 
 void CreepMode::load(checkpoint::InArchive& ar, const loading::Stage& current) {
-  bool active = false;
-  ar(active);
-  control_.reset();
-  if (active) {
-    control_.emplace(current);  // its state follows
-    ar(*control_);
-  }
-  load_stage_reports(ar, reports_);
+  load_mode_state(ar, control_, reports_, current);
 }
 
 }  // namespace vorodec::run

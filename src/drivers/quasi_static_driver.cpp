@@ -15,7 +15,7 @@ namespace vorodec::run {
 // A member added to the driver is either state a checkpoint carries (save and load it in
 // QuasiStaticDriver::state) or comes again from the model file or the loaded state (say so there);
 // then update these sizes.
-static_assert(sizeof(QuasiStaticDriver) == 736, "QuasiStaticDriver changed: see state()");
+static_assert(sizeof(QuasiStaticDriver) == 744, "QuasiStaticDriver changed: see state()");
 static_assert(sizeof(DriverOutcome) == 96, "DriverOutcome changed: see state()");
 static_assert(sizeof(loading::StageControl) == 104, "StageControl changed: see its serialize()");
 
@@ -69,8 +69,7 @@ QuasiStaticDriver::QuasiStaticDriver(const DriverContext& c)
       solver_(c.solver),
       boundary_(c.boundary),
       specimen_(c.specimen),
-      step_limit_(c.step_limit),
-      limit_from_option_(c.limit_from_option),
+      limit_{c.step_limit, c.limit_from_option},
       modes_(make_stage_modes(c)),
       state_(measure::measure_specimen(c.model, c.boundary, c.solver)) {
   outcome_.stalled.assign(cfg_.load_path.stages.size(), false);
@@ -125,8 +124,7 @@ void QuasiStaticDriver::advance(Observers& observers) {
         break;
     }
   } catch (const solver::InstabilityError& e) {
-    outcome_.exit_code = 3;
-    outcome_.status = fmt::format("unstable: {}", e.what());
+    mark_unstable(outcome_, e.what());
     if (mode_ && phase_ == Phase::stepping) {
       const std::string status = mode_->unstable(context(), e.what());
       if (!status.empty()) outcome_.status = status;
@@ -165,9 +163,7 @@ void QuasiStaticDriver::start_stage(Observers& observers) {
 }
 
 void QuasiStaticDriver::step(Observers& observers) {
-  if (solver_.steps() >= step_limit_) {
-    outcome_.status = limit_from_option_ ? "stopped at --max-steps" : "step limit";
-    outcome_.exit_code = limit_from_option_ ? 0 : 4;
+  if (limit_.reached(solver_.steps(), outcome_)) {
     stop_ = true;
     phase_ = Phase::stage_end;
     return;
@@ -190,13 +186,11 @@ void QuasiStaticDriver::step(Observers& observers) {
   solver_.step();
   state_ = measure::measure_specimen(model_, boundary_, solver_);
   good_.check(solver_, model_);
-  outcome_.peak = std::max(outcome_.peak, state_.axial_stress);
-  outcome_.trough = std::min(outcome_.trough, state_.axial_stress);
-  const bool row = solver_.steps() % cfg_.output.history_steps == 0;
-  const bool frame = solver_.steps() % cfg_.output.vtk_steps == 0;
-  if (row || frame) observers.sample(view(), {st.name, row, frame});
+  track_extremes(outcome_, state_.axial_stress);
+  const Due d = due(solver_.steps(), cfg_.output.history_steps, cfg_.output.vtk_steps);
+  if (d.row || d.frame) observers.sample(view(), {st.name, d.row, d.frame});
   const loading::StageOutcome outcome =
-      control.judge({solver_.time() - t0_, state_.axial_stress, state_.axial_strain, row});
+      control.judge({solver_.time() - t0_, state_.axial_stress, state_.axial_strain, d.row});
   stage_fraction_ = std::max(stage_fraction_, control.fraction());
   if (mode_) {
     const ModeVerdict verdict = mode_->after_step(context(), state_);

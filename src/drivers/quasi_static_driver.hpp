@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "driver_steps.hpp"
 #include "implicit_start.hpp"
 #include "stage_mode.hpp"
 #include "vorodec/engine/driver.hpp"
@@ -50,8 +51,7 @@ class QuasiStaticDriver final : public Driver, private ExtraColumns {
   solver::Solver& solver_;
   const loading::SpecimenBoundary& boundary_;
   const geometry::Tessellation& specimen_;
-  long step_limit_;
-  bool limit_from_option_;
+  StepLimit limit_;
 
   Phase phase_ = Phase::stage_start;
   std::size_t si_ = 0;  // current stage

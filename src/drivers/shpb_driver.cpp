@@ -23,8 +23,7 @@ ShpbDriver::ShpbDriver(const DriverContext& c)
       solver_(c.solver),
       boundary_(c.boundary),
       specimen_(c.specimen),
-      step_limit_(c.step_limit),
-      limit_from_option_(c.limit_from_option),
+      limit_{c.step_limit, c.limit_from_option},
       history_steps_(c.cfg.output.history_steps),
       vtk_steps_(c.cfg.output.vtk_steps),
       // The striker hits the bar's far end so that the pulse's front reaches the face at 0.
@@ -170,8 +169,7 @@ void ShpbDriver::advance(Observers& observers) {
       step(observers);
     }
   } catch (const solver::InstabilityError& e) {
-    outcome_.exit_code = 3;
-    outcome_.status = fmt::format("unstable: {}", e.what());
+    mark_unstable(outcome_, e.what());
     good_.restore(model_);
     observers.sample(view(), {"unstable", false, true});
     phase_ = Phase::done;
@@ -181,11 +179,7 @@ void ShpbDriver::advance(Observers& observers) {
 void ShpbDriver::step(Observers& observers) {
   // Recorded bars run on until the waves of the test's end have reached the gauges.
   if (face_time() >= cfg_.duration + bars_.reach) return finish(observers, "impact:end");
-  if (solver_.steps() >= step_limit_) {
-    outcome_.status = limit_from_option_ ? "stopped at --max-steps" : "step limit";
-    outcome_.exit_code = limit_from_option_ ? 0 : 4;
-    return finish(observers, "impact:stopped");
-  }
+  if (limit_.reached(solver_.steps(), outcome_)) return finish(observers, "impact:stopped");
   for (auto* end : {&incident_end_, &transmitted_end_})
     if (*end) {
       (*end)->clear_loads(model_);
@@ -195,11 +189,9 @@ void ShpbDriver::step(Observers& observers) {
   if (cfg_.block_bars) record_block_bars();
   state_ = measure::measure_specimen(model_, boundary_, solver_);
   good_.check(solver_, model_);
-  outcome_.peak = std::max(outcome_.peak, state_.axial_stress);
-  outcome_.trough = std::min(outcome_.trough, state_.axial_stress);
-  const bool row = solver_.steps() % history_steps_ == 0;
-  const bool frame = solver_.steps() % vtk_steps_ == 0;
-  if (row || frame) observers.sample(view(), {"impact", row, frame});
+  track_extremes(outcome_, state_.axial_stress);
+  const Due d = due(solver_.steps(), history_steps_, vtk_steps_);
+  if (d.row || d.frame) observers.sample(view(), {"impact", d.row, d.frame});
 }
 
 void ShpbDriver::finish(Observers& observers, const std::string& label) {

@@ -12,6 +12,7 @@
 // The test runs for [shpb] duration after time 0.
 #include <optional>
 
+#include "driver_steps.hpp"
 #include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/driver.hpp"
 #include "vorodec/engine/good_state.hpp"
@@ -64,8 +65,7 @@ class ShpbDriver final : public Driver {
   solver::Solver& solver_;
   const loading::SpecimenBoundary& boundary_;
   const geometry::Tessellation& specimen_;
-  long step_limit_;
-  bool limit_from_option_;
+  StepLimit limit_;
   long history_steps_, vtk_steps_;
   double shift_ = 0;  // s, solver time of the pulse's arrival (block bars)
 

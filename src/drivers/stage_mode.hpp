@@ -5,6 +5,7 @@
 // columns, its progress text, its summary.json section and its checkpoint state, so the driver
 // knows none of them.
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -76,6 +77,30 @@ void load_stage_reports(checkpoint::InArchive& ar,
   ar(checkpoint::pod(stages), checkpoint::pod(reports));
   list.clear();
   for (std::size_t k = 0; k < stages.size(); ++k) list.emplace_back(stages[k], reports[k]);
+}
+
+// A mode's checkpoint state: its stage's control (if a stage of its runs), then its reports.
+template <class Control, class Report>
+void save_mode_state(checkpoint::OutArchive& ar, const std::optional<Control>& control,
+                     const std::vector<std::pair<std::size_t, Report>>& reports) {
+  const bool active = control.has_value();
+  ar(active);
+  if (active) ar(*control);
+  save_stage_reports(ar, reports);
+}
+
+// The same loaded; `args` make a control whose state the archive then loads.
+template <class Control, class Report, class... Args>
+void load_mode_state(checkpoint::InArchive& ar, std::optional<Control>& control,
+                     std::vector<std::pair<std::size_t, Report>>& reports, const Args&... args) {
+  bool active = false;
+  ar(active);
+  control.reset();
+  if (active) {
+    control.emplace(args...);
+    ar(*control);
+  }
+  load_stage_reports(ar, reports);
 }
 
 // The modes the load path's stages use, in the order of the table in stage_modes.cpp.

@@ -190,6 +190,128 @@ void check_bounds(const CalibrationPlan& plan, const toml::array& list, const st
   }
 }
 
+std::vector<std::uint64_t> read_seeds(TomlSection& top) {
+  std::vector<std::uint64_t> seeds;
+  const toml::node* list = top.node("seeds");
+  if (!list || !list->is_array() || list->as_array()->empty())
+    top.fail("seeds", "give a non-empty array of seeds, e.g. [1, 2, 3]");
+  for (const toml::node& s : *list->as_array()) {
+    const auto v = s.value_exact<std::int64_t>();
+    if (!v || *v < 0) top.fail_at(&s, "seeds", "seeds are non-negative integers");
+    seeds.push_back(static_cast<std::uint64_t>(*v));
+  }
+  if (std::set<std::uint64_t>(seeds.begin(), seeds.end()).size() != seeds.size())
+    top.fail("seeds", "a seed is listed twice");
+  return seeds;
+}
+
+void read_budget(TomlSection budget, CalibrationPlan& plan) {
+  if (!budget.has("runs")) budget.fail("runs", "required key is missing");
+  plan.max_runs = budget.integer("runs", 0, 1);
+  plan.max_wall_seconds = budget.positive("wall_time", NAN);
+  budget.finish();
+}
+
+// The [[test]] tables; each test's model file is read for its confining stress.
+std::vector<CalibrationTest> read_tests(TomlSection& top, const std::filesystem::path& file) {
+  std::vector<CalibrationTest> list;
+  const toml::node* tests = top.node("test");
+  if (!tests || !tests->is_array_of_tables() || tests->as_array()->empty())
+    top.fail("test", "give one or more [[test]] tables (name, model, set)");
+  for (std::size_t i = 0; i < tests->as_array()->size(); ++i) {
+    TomlSection sec(*tests->as_array()->get(i)->as_table(), fmt::format("test[{}]", i), top.file());
+    CalibrationTest t;
+    t.name = sec.string("name", nullptr);
+    if (!folder_safe(t.name)) sec.fail("name", "letters, digits, _ and - only");
+    for (const CalibrationTest& u : list)
+      if (u.name == t.name) sec.fail("name", fmt::format("two tests are named '{}'", t.name));
+    t.model = sec.string("model", nullptr);
+    if (t.model.is_relative()) t.model = (file.parent_path() / t.model).lexically_normal();
+    if (!std::filesystem::is_regular_file(t.model))
+      sec.fail("model", fmt::format("model file '{}' does not exist", t.model.string()));
+    t.overrides = read_set(sec);
+    sec.finish();
+    t.confining_stress = read_model_file(t.model, t.overrides).load_path.confining_stress;
+    list.push_back(std::move(t));
+  }
+  return list;
+}
+
+// The [[parameter]] tables (their list returned, for later messages); the names of the targets
+// each scales go into `scale_names`, to be found once the targets are read.
+const toml::array& read_parameters(TomlSection& top, CalibrationPlan& plan,
+                                   std::vector<std::vector<std::string>>& scale_names) {
+  const toml::node* parameters = top.node("parameter");
+  if (!parameters || !parameters->is_array_of_tables() || parameters->as_array()->empty())
+    top.fail("parameter", "give one or more [[parameter]] tables (key, min, max, start)");
+  const toml::array& parameter_list = *parameters->as_array();
+  for (std::size_t i = 0; i < parameter_list.size(); ++i) {
+    TomlSection sec(*parameter_list[i].as_table(), fmt::format("parameter[{}]", i), top.file());
+    CalibrationParameter p = read_parameter(sec);
+    for (const CalibrationParameter& q : plan.parameters)
+      if (q.name == p.name) sec.fail("key", fmt::format("'{}' is varied twice", p.name));
+    scale_names.emplace_back();
+    if (const toml::node* s = sec.node("scales")) {
+      if (!s->is_array()) sec.fail("scales", "must be an array of target names");
+      for (const toml::node& v : *s->as_array()) {
+        const auto n = v.value_exact<std::string>();
+        if (!n) sec.fail("scales", "must be an array of target names");
+        scale_names.back().push_back(*n);
+      }
+    }
+    sec.finish();
+    plan.parameters.push_back(std::move(p));
+  }
+  return parameter_list;
+}
+
+// [tie]: "model key" = "expression" of the parameters.
+void read_ties(TomlSection& top, CalibrationPlan& plan) {
+  const toml::node* ties = top.node("tie");
+  if (!ties) return;
+  if (!ties->is_table()) top.fail("tie", "must be a table of \"model key\" = \"expression\"");
+  TomlSection sec(*ties->as_table(), "tie", top.file());
+  for (const auto& [k, v] : *ties->as_table()) {
+    const std::string key(k.str());
+    const auto expression = v.value_exact<std::string>();
+    if (!expression) sec.fail(key, "must be an expression in quotes, e.g. \"joints.jkn / 2.6\"");
+    for (const CalibrationParameter& p : plan.parameters)
+      if (p.name == key) sec.fail(key, "is a parameter already; a key is varied or tied");
+    sec.node(key);
+    plan.ties.push_back(parse_tie(key, *expression, plan.parameters, sec));
+  }
+}
+
+void read_targets(TomlSection& top, CalibrationPlan& plan) {
+  const toml::node* targets = top.node("target");
+  if (!targets || !targets->is_array_of_tables() || targets->as_array()->empty())
+    top.fail("target", "give one or more [[target]] tables (name, quantity, test, value)");
+  for (std::size_t i = 0; i < targets->as_array()->size(); ++i) {
+    TomlSection sec(*targets->as_array()->get(i)->as_table(), fmt::format("target[{}]", i),
+                    top.file());
+    CalibrationTarget t = read_target(sec, plan.tests);
+    for (const CalibrationTarget& u : plan.targets)
+      if (u.name == t.name) sec.fail("name", fmt::format("two targets are named '{}'", t.name));
+    sec.finish();
+    plan.targets.push_back(std::move(t));
+  }
+}
+
+// Each parameter's `scales`: the targets it scales, by index.
+void link_scales(CalibrationPlan& plan, const std::vector<std::vector<std::string>>& scale_names,
+                 const toml::array& parameter_list, const std::string& file) {
+  for (std::size_t i = 0; i < plan.parameters.size(); ++i)
+    for (const std::string& s : scale_names[i]) {
+      const auto it = std::find_if(plan.targets.begin(), plan.targets.end(),
+                                   [&](const CalibrationTarget& t) { return t.name == s; });
+      if (it == plan.targets.end()) {
+        TomlSection sec(*parameter_list[i].as_table(), fmt::format("parameter[{}]", i), file);
+        sec.fail("scales", fmt::format("no [[target]] is named '{}'", s));
+      }
+      plan.parameters[i].scales.push_back(static_cast<std::size_t>(it - plan.targets.begin()));
+    }
+}
+
 }  // namespace
 
 std::vector<Override> run_overrides(const CalibrationPlan& plan, std::size_t test,
@@ -219,105 +341,17 @@ CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
   const std::string default_out = (std::filesystem::path("results") / file.stem()).string();
   plan.output = top.string("output", &default_out);
   if (plan.output.empty()) top.fail("output", "must name a folder");
-  const toml::node* seeds = top.node("seeds");
-  if (!seeds || !seeds->is_array() || seeds->as_array()->empty())
-    top.fail("seeds", "give a non-empty array of seeds, e.g. [1, 2, 3]");
-  for (const toml::node& s : *seeds->as_array()) {
-    const auto v = s.value_exact<std::int64_t>();
-    if (!v || *v < 0) top.fail_at(&s, "seeds", "seeds are non-negative integers");
-    plan.seeds.push_back(static_cast<std::uint64_t>(*v));
-  }
-  if (std::set<std::uint64_t>(plan.seeds.begin(), plan.seeds.end()).size() != plan.seeds.size())
-    top.fail("seeds", "a seed is listed twice");
+  plan.seeds = read_seeds(top);
   plan.step = top.number("step", 0.1);
   if (!(plan.step > 0 && plan.step < 1))
     top.fail("step", "the sensitivity step is a fraction of the value in (0, 1)");
-  {
-    TomlSection budget = top.sub("budget");
-    if (!budget.has("runs")) budget.fail("runs", "required key is missing");
-    plan.max_runs = budget.integer("runs", 0, 1);
-    plan.max_wall_seconds = budget.positive("wall_time", NAN);
-    budget.finish();
-  }
-
-  const toml::node* tests = top.node("test");
-  if (!tests || !tests->is_array_of_tables() || tests->as_array()->empty())
-    top.fail("test", "give one or more [[test]] tables (name, model, set)");
-  for (std::size_t i = 0; i < tests->as_array()->size(); ++i) {
-    TomlSection sec(*tests->as_array()->get(i)->as_table(), fmt::format("test[{}]", i), name);
-    CalibrationTest t;
-    t.name = sec.string("name", nullptr);
-    if (!folder_safe(t.name)) sec.fail("name", "letters, digits, _ and - only");
-    for (const CalibrationTest& u : plan.tests)
-      if (u.name == t.name) sec.fail("name", fmt::format("two tests are named '{}'", t.name));
-    t.model = sec.string("model", nullptr);
-    if (t.model.is_relative()) t.model = (file.parent_path() / t.model).lexically_normal();
-    if (!std::filesystem::is_regular_file(t.model))
-      sec.fail("model", fmt::format("model file '{}' does not exist", t.model.string()));
-    t.overrides = read_set(sec);
-    sec.finish();
-    t.confining_stress = read_model_file(t.model, t.overrides).load_path.confining_stress;
-    plan.tests.push_back(std::move(t));
-  }
-
-  const toml::node* parameters = top.node("parameter");
-  if (!parameters || !parameters->is_array_of_tables() || parameters->as_array()->empty())
-    top.fail("parameter", "give one or more [[parameter]] tables (key, min, max, start)");
-  const toml::array& parameter_list = *parameters->as_array();
+  read_budget(top.sub("budget"), plan);
+  plan.tests = read_tests(top, file);
   std::vector<std::vector<std::string>> scale_names;
-  for (std::size_t i = 0; i < parameter_list.size(); ++i) {
-    TomlSection sec(*parameter_list[i].as_table(), fmt::format("parameter[{}]", i), name);
-    CalibrationParameter p = read_parameter(sec);
-    for (const CalibrationParameter& q : plan.parameters)
-      if (q.name == p.name) sec.fail("key", fmt::format("'{}' is varied twice", p.name));
-    scale_names.emplace_back();
-    if (const toml::node* s = sec.node("scales")) {
-      if (!s->is_array()) sec.fail("scales", "must be an array of target names");
-      for (const toml::node& v : *s->as_array()) {
-        const auto n = v.value_exact<std::string>();
-        if (!n) sec.fail("scales", "must be an array of target names");
-        scale_names.back().push_back(*n);
-      }
-    }
-    sec.finish();
-    plan.parameters.push_back(std::move(p));
-  }
-
-  if (const toml::node* ties = top.node("tie")) {
-    if (!ties->is_table()) top.fail("tie", "must be a table of \"model key\" = \"expression\"");
-    TomlSection sec(*ties->as_table(), "tie", name);
-    for (const auto& [k, v] : *ties->as_table()) {
-      const std::string key(k.str());
-      const auto expression = v.value_exact<std::string>();
-      if (!expression) sec.fail(key, "must be an expression in quotes, e.g. \"joints.jkn / 2.6\"");
-      for (const CalibrationParameter& p : plan.parameters)
-        if (p.name == key) sec.fail(key, "is a parameter already; a key is varied or tied");
-      sec.node(key);
-      plan.ties.push_back(parse_tie(key, *expression, plan.parameters, sec));
-    }
-  }
-
-  const toml::node* targets = top.node("target");
-  if (!targets || !targets->is_array_of_tables() || targets->as_array()->empty())
-    top.fail("target", "give one or more [[target]] tables (name, quantity, test, value)");
-  for (std::size_t i = 0; i < targets->as_array()->size(); ++i) {
-    TomlSection sec(*targets->as_array()->get(i)->as_table(), fmt::format("target[{}]", i), name);
-    CalibrationTarget t = read_target(sec, plan.tests);
-    for (const CalibrationTarget& u : plan.targets)
-      if (u.name == t.name) sec.fail("name", fmt::format("two targets are named '{}'", t.name));
-    sec.finish();
-    plan.targets.push_back(std::move(t));
-  }
-  for (std::size_t i = 0; i < plan.parameters.size(); ++i)
-    for (const std::string& s : scale_names[i]) {
-      const auto it = std::find_if(plan.targets.begin(), plan.targets.end(),
-                                   [&](const CalibrationTarget& t) { return t.name == s; });
-      if (it == plan.targets.end()) {
-        TomlSection sec(*parameter_list[i].as_table(), fmt::format("parameter[{}]", i), name);
-        sec.fail("scales", fmt::format("no [[target]] is named '{}'", s));
-      }
-      plan.parameters[i].scales.push_back(static_cast<std::size_t>(it - plan.targets.begin()));
-    }
+  const toml::array& parameter_list = read_parameters(top, plan, scale_names);
+  read_ties(top, plan);
+  read_targets(top, plan);
+  link_scales(plan, scale_names, parameter_list, name);
   top.finish();
   const long per_evaluation = static_cast<long>(plan.tests.size() * plan.seeds.size());
   if (plan.max_runs < per_evaluation)

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "cases.hpp"
+#include "model_runs.hpp"
 
 namespace vorodec::verification {
 
@@ -65,15 +66,6 @@ std::vector<std::pair<std::string, std::string>> deformable_stiff_joints(
 std::string slurp(const fs::path& f) {
   std::ifstream in(f);
   return {std::istreambuf_iterator<char>(in), {}};
-}
-
-std::string field(const std::string& json, const std::string& key) {
-  const std::string tag = "\"" + key + "\": ";
-  const auto p = json.find(tag);
-  if (p == std::string::npos) return {};
-  const auto b = p + tag.size();
-  if (json[b] == '"') return json.substr(b + 1, json.find('"', b + 1) - b - 1);
-  return json.substr(b, json.find_first_of(",\n}", b) - b);
 }
 
 bool history_finite(const fs::path& csv) {
@@ -186,9 +178,9 @@ std::vector<StabilityOutcome> stability_cases(const std::string& source_dir,
     o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const std::string summary = slurp(run_dir / "summary.json");
-    o.status = field(summary, "status");
-    o.steps = std::atol(field(summary, "steps").c_str());
-    o.time_step = std::atof(field(summary, "time_step_s").c_str());
+    o.status = json_string(summary, "status");
+    o.steps = static_cast<long>(json_number(summary, "steps"));
+    o.time_step = json_number(summary, "time_step_s");
     o.finite = history_finite(run_dir / "history.csv");
     out.push_back(o);
   }
