@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 #include "vorodec/model/zoning.hpp"
@@ -16,7 +17,7 @@ namespace {
 // Zone size in micrometres as the first argument (0: rigid blocks), threads as the second.
 io::ModelConfig model(std::int64_t zone_um) {
   io::ModelConfig cfg =
-      io::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
+      run::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
   if (zone_um > 0) cfg.deformable = {true, 1e-6 * static_cast<double>(zone_um), 60e9, 0.25};
   return cfg;
 }

@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 #include "vorodec/model/build.hpp"
@@ -14,7 +15,7 @@ namespace {
 void BM_DefaultModelStepLawGroups(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   const io::ModelConfig cfg =
-      io::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
+      run::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
   const auto tess = run::make_specimen(cfg);
   model::Model m = model::build_model(tess, {cfg.density, cfg.rounding_length, true});
   std::vector<std::unique_ptr<laws::LawGroup>> groups;

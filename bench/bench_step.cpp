@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "vorodec/checkpoint/checkpoint_file.hpp"
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 
@@ -17,7 +18,7 @@ using namespace vorodec;
 namespace {
 
 io::ModelConfig default_model() {
-  return io::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
+  return run::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
 }
 
 // The default model's material on a square-ish specimen with `blocks` blocks of the same size.

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "run_support.hpp"
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/input/model_file.hpp"
 #include "vorodec/loading/stage_control.hpp"
 
@@ -100,7 +101,7 @@ TEST(AdaptiveVelocity, ModelFileReadsTheTableWithItsDefaults) {
       << "\"\n[[stage]]\nplaten_velocity = 5e-3\nend_axial_strain = 0.01\n"
          "adaptive_velocity = { target_ratio = 5e-4, min_velocity = "
          "1e-3, max_velocity = 2e-2 }\n";
-  const io::ModelConfig cfg = io::read_model_file(dir / "m.toml");
+  const io::ModelConfig cfg = run::read_model_file(dir / "m.toml");
   const loading::AdaptiveVelocity& a = cfg.load_path.stages.at(0).adaptive;
   EXPECT_TRUE(a.enabled);
   EXPECT_EQ(a.target_ratio, 5e-4);
@@ -108,7 +109,7 @@ TEST(AdaptiveVelocity, ModelFileReadsTheTableWithItsDefaults) {
   EXPECT_EQ(a.max_velocity, 2e-2);
   EXPECT_EQ(a.interval_steps, 500);
   EXPECT_EQ(a.max_change, 1.25);
-  EXPECT_FALSE(io::read_model_file(small_model).load_path.stages.at(0).adaptive.enabled);
+  EXPECT_FALSE(run::read_model_file(small_model).load_path.stages.at(0).adaptive.enabled);
 }
 
 // One adaptive run of e2e_small and the same at its fixed minimum speed: peak in fewer steps,

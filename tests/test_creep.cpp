@@ -7,6 +7,7 @@
 #include <set>
 
 #include "run_support.hpp"
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 
 using namespace vorodec;
@@ -113,7 +114,7 @@ TEST(Creep, SummaryReportsEachCreepStageStepsAndQuasiStaticState) {
 }
 
 TEST(Creep, AMixFractionOfJointsTakesTheSecondLawWholeJointsAtATime) {
-  io::ModelConfig cfg = io::read_model_file(kSmall);
+  io::ModelConfig cfg = run::read_model_file(kSmall);
   io::LawChoice mc{"mohr_coulomb", {}};
   for (const char* k : {"jkn", "jks"}) mc.params[k] = model::Distribution::constant(1e13);
   for (const char* k : {"tension", "cohesion", "friction", "dilation"})

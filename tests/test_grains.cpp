@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "run_support.hpp"
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/geometry/grains.hpp"
 #include "vorodec/input/model_file.hpp"
@@ -131,7 +132,7 @@ TEST(Grains, TrigonSubBlocksAreTrianglesSharingEveryGrainBoundaryVertex) {
 // Contacts inside one grain use the transgranular law group, contacts between grains the
 // intergranular one, and quartz-feldspar boundaries their own pair law.
 TEST(Grains, ContactsKnowWhetherTheyCrossAGrainBoundary) {
-  const io::ModelConfig cfg = io::read_model_file(kSmall);
+  const io::ModelConfig cfg = run::read_model_file(kSmall);
   const geometry::Tessellation t = run::make_specimen(cfg);
   const run::PreparedModel p = run::prepare_model(cfg, t);
   std::map<int, std::size_t> per_law;
@@ -187,7 +188,7 @@ TEST(Grains, GrainFileGivesTheTracedGrainsAndTheirMinerals) {
         "g4,feldspar,0.005,0.005\ng4,feldspar,0.01,0.005\ng4,feldspar,0.01,0.01\n"
         "g4,feldspar,0.005,0.01\n");
   const fs::path model = write(dir / "model.toml", grain_file_model("grains.csv"));
-  const io::ModelConfig cfg = io::read_model_file(model);
+  const io::ModelConfig cfg = run::read_model_file(model);
   const geometry::Tessellation t = run::make_specimen(cfg);
   EXPECT_EQ(t.grain_mineral, (std::vector<std::int32_t>{0, 1, 1, 0}));
   ASSERT_EQ(t.mineral_area.size(), 2u);
@@ -301,7 +302,7 @@ std::string deformable_grains_model() {
 TEST(Grains, DeformableGrainsTakeTheirMineralsElasticity) {
   const fs::path dir = vorodec::testing::out_dir("deformable_grains");
   const fs::path model = write(dir / "model.toml", deformable_grains_model());
-  const io::ModelConfig cfg = io::read_model_file(model);
+  const io::ModelConfig cfg = run::read_model_file(model);
   const geometry::Tessellation t = run::make_specimen(cfg);
   const run::PreparedModel p = run::prepare_model(cfg, t);
   const model::Zoning& z = p.model->zoning;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/input/model_file.hpp"
 
 namespace fs = std::filesystem;
@@ -23,8 +24,8 @@ const std::string base_model = std::string(VORODEC_SOURCE_DIR) + "/tests/models/
 }  // namespace
 
 TEST(ModelFile, DerivedModelOverridesKeysAndKeepsTheRestOfItsBase) {
-  const io::ModelConfig base = io::read_model_file(base_model);
-  const io::ModelConfig d = io::read_model_file(
+  const io::ModelConfig base = run::read_model_file(base_model);
+  const io::ModelConfig d = run::read_model_file(
       write("derived.toml", "base = \"" + base_model +
                                 "\"\ntitle = \"derived\"\n[joints]\nfriction = 31.0\n"
                                 "[loading]\nconfining_stress = 5e6\n"));
@@ -37,7 +38,7 @@ TEST(ModelFile, DerivedModelOverridesKeysAndKeepsTheRestOfItsBase) {
 }
 
 TEST(ModelFile, DerivedStageListReplacesTheBaseStages) {
-  const io::ModelConfig d = io::read_model_file(
+  const io::ModelConfig d = run::read_model_file(
       write("stages.toml", "base = \"" + base_model +
                                "\"\n[[stage]]\nname = \"a\"\nplaten_velocity = 0.01\n"
                                "end_axial_strain = 1e-3\n[[stage]]\nname = \"b\"\n"
@@ -48,7 +49,7 @@ TEST(ModelFile, DerivedStageListReplacesTheBaseStages) {
 
 TEST(ModelFile, MissingBaseFileIsNamedWithItsLine) {
   try {
-    io::read_model_file(write("nobase.toml", "seed = 1\nbase = \"no_such_base.toml\"\n"));
+    run::read_model_file(write("nobase.toml", "seed = 1\nbase = \"no_such_base.toml\"\n"));
     FAIL() << "accepted a missing base file";
   } catch (const io::ModelFileError& e) {
     EXPECT_NE(std::string(e.what()).find("nobase.toml:2: key 'base': no such file"),
@@ -59,9 +60,10 @@ TEST(ModelFile, MissingBaseFileIsNamedWithItsLine) {
 
 TEST(ModelFile, ErrorInADerivedFileNamesItsOwnLine) {
   try {
-    io::read_model_file(write("derived_bad.toml", "base = \"" + base_model +
-                                                      "\"\n[[stage]]\nplaten_velocity = 0.01\n"
-                                                      "end_axial_strain = 1e-3\nramp_time = -1\n"));
+    run::read_model_file(
+        write("derived_bad.toml", "base = \"" + base_model +
+                                      "\"\n[[stage]]\nplaten_velocity = 0.01\n"
+                                      "end_axial_strain = 1e-3\nramp_time = -1\n"));
     FAIL() << "accepted a negative ramp_time";
   } catch (const io::ModelFileError& e) {
     EXPECT_NE(std::string(e.what()).find("derived_bad.toml:5: key 'stage[0].ramp_time'"),
@@ -72,10 +74,10 @@ TEST(ModelFile, ErrorInADerivedFileNamesItsOwnLine) {
 
 TEST(ModelFile, MarbleModelsShareTheUcsModelsContacts) {
   const std::string dir = std::string(VORODEC_SOURCE_DIR) + "/models/";
-  const io::ModelConfig ucs = io::read_model_file(dir + "ucs_marble.toml");
+  const io::ModelConfig ucs = run::read_model_file(dir + "ucs_marble.toml");
   for (const char* other : {"brazilian_marble.toml", "tension_marble.toml", "cyclic_marble.toml",
                             "triaxial_marble.toml"}) {
-    const io::ModelConfig m = io::read_model_file(dir + other);
+    const io::ModelConfig m = run::read_model_file(dir + other);
     EXPECT_EQ(m.density, ucs.density) << other;
     EXPECT_EQ(m.rounding_length, ucs.rounding_length) << other;
     ASSERT_EQ(m.joints.params.size(), ucs.joints.params.size()) << other;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 
@@ -24,7 +25,7 @@ struct Snapshot {
 Snapshot run_with_parts(int parts) {
   omp_set_num_threads(parts);
   io::ModelConfig cfg =
-      io::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/tests/models/e2e_small.toml");
+      run::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/tests/models/e2e_small.toml");
   // Enough blocks for the contact loop to open its parallel region (>= 2,048 contacts).
   cfg.tessellation.block_count = 600;
   cfg.tessellation.outline.width *= 2.0;

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "vorodec/checkpoint/checkpoint_file.hpp"
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/input/model_file.hpp"
 #include "vorodec/io/specimen_file.hpp"
@@ -175,7 +176,7 @@ void add_workflow_commands(CLI::App& cli, Options& o, Commands& c) {
 
 // run, check, build: the model file read, its specimen made, then the command's own part.
 int model_command(const Options& o, const Commands& c) {
-  const io::ModelConfig cfg = io::read_model_file(o.model_path, parse_sets(o.sets));
+  const io::ModelConfig cfg = run::read_model_file(o.model_path, parse_sets(o.sets));
   geometry::Tessellation specimen;
   try {
     specimen = run::make_specimen(cfg);

@@ -37,10 +37,10 @@ void CorrosionClock::after(bool broke) {
   }
 }
 
-CorrosionControl::CorrosionControl(const loading::Stage& stage, const io::CorrosionConfig& config,
+CorrosionControl::CorrosionControl(const loading::Stage& stage, const CorrosionConfig& config,
                                    const model::Model& model, const solver::Solver& solver,
                                    std::span<const std::int32_t> block_grain)
-    : stage_(stage), config_(config), clock_(stage.corrosion.steps_per_failure) {
+    : stage_(stage), config_(config), clock_(corrosion_settings(stage).steps_per_failure) {
   const auto& contacts = model.contacts;
   const auto specimen = [&](std::int32_t b) {
     return static_cast<std::size_t>(b) < block_grain.size() &&
@@ -85,7 +85,7 @@ CorrosionControl::CorrosionControl(const loading::Stage& stage, const io::Corros
 
 CorrosionControl::Next CorrosionControl::after_step(solver::Solver& solver, model::Model& model,
                                                     const measure::SpecimenState& s) {
-  const loading::CorrosionSettings& cs = stage_.corrosion;
+  const CorrosionSettings& cs = corrosion_settings(stage_);
   ++report_.mechanical_steps;
   ++since_equilibrium_;
   if (since_equilibrium_ % cs.check_interval != 0) return Next::step;
@@ -136,8 +136,8 @@ struct CorrosionControl::Step {
     bool fails = false, tensile = true;
   };
 
-  Step(const io::CorrosionConfig& config, const loading::CorrosionSettings& settings,
-       std::size_t joint_count, std::size_t contact_count, solver::Solver& s, model::Model& m)
+  Step(const CorrosionConfig& config, const CorrosionSettings& settings, std::size_t joint_count,
+       std::size_t contact_count, solver::Solver& s, model::Model& m)
       : cfg(config),
         beta1(cfg.rate.at(settings.driving_stress_ratio)),
         beta3(cfg.beta3_per_beta1 * beta1),
@@ -178,7 +178,7 @@ struct CorrosionControl::Step {
     };
   }
 
-  const io::CorrosionConfig& cfg;
+  const CorrosionConfig& cfg;
   const double beta1, beta3;
   const bool frozen;
   solver::Solver& solver;
@@ -300,7 +300,8 @@ void CorrosionControl::break_failed(Step& s) {
 
 // The corrosion step (s), never past the stage's duration; the clocks move on by it.
 double CorrosionControl::advance_clock(double shortest, solver::Solver& solver) {
-  const double dt = std::min(clock_.next(shortest), stage_.corrosion.max_time - report_.time);
+  const double dt =
+      std::min(clock_.next(shortest), corrosion_settings(stage_).max_time - report_.time);
   report_.time += dt;
   report_.min_step = report_.corrosion_steps ? std::min(report_.min_step, dt) : dt;
   report_.max_step = std::max(report_.max_step, dt);
@@ -364,7 +365,8 @@ void CorrosionControl::weaken_contacts(Step& s, double dt) {
 }
 
 bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
-  Step s(config_, stage_.corrosion, joints_.size(), bonds_.size() - inter_begin_, solver, model);
+  Step s(config_, corrosion_settings(stage_), joints_.size(), bonds_.size() - inter_begin_, solver,
+         model);
   report_.active_bonds = report_.active_contacts = 0;
   assess_joints(s);
   assess_contacts(s);
@@ -377,7 +379,7 @@ bool CorrosionControl::corrode(solver::Solver& solver, model::Model& model) {
 }
 
 void CorrosionMode::begin_stage(const StageContext& c) {
-  control_.emplace(c.stage, *cfg_.corrosion, model_, solver_, specimen_.block_grain);
+  control_.emplace(c.stage, *config_, model_, solver_, specimen_.block_grain);
   solver_.set_crack_clock(0.0);
 }
 
@@ -392,7 +394,8 @@ ModeVerdict CorrosionMode::after_step(const StageContext& c, const measure::Spec
       return {"",
               fmt::format("static-fatigue failure in stage '{}' after {:.4g} s ({:.4g} days) of "
                           "corrosion: no equilibrium within {} steps",
-                          c.stage.name, t, t / 86400.0, c.stage.corrosion.max_equilibrium_steps),
+                          c.stage.name, t, t / 86400.0,
+                          corrosion_settings(c.stage).max_equilibrium_steps),
               true, true};
     }
     case CorrosionControl::Next::no_corrosion:
@@ -452,7 +455,7 @@ void CorrosionMode::summarise(io::Json& summary) const {
     const loading::Stage& st = cfg_.load_path.stages[i];
     rows.push_back(
         {{"stage", st.name},
-         {"driving_stress_ratio", io::rounded(st.corrosion.driving_stress_ratio, 6)},
+         {"driving_stress_ratio", io::rounded(corrosion_settings(st).driving_stress_ratio, 6)},
          {"target_stress_Pa", io::rounded(st.target_stress, 8)},
          {"corrosion_time_s", io::rounded(r.time, 10)},
          {"failure_time_s", io::rounded(r.failure_time, 10)},
@@ -476,7 +479,108 @@ void CorrosionMode::save(checkpoint::OutArchive& ar) const {
 }
 
 void CorrosionMode::load(checkpoint::InArchive& ar, const loading::Stage& current) {
-  load_mode_state(ar, control_, reports_, current, *cfg_.corrosion);
+  load_mode_state(ar, control_, reports_, current, *config_);
+}
+
+// [corrosion]: the constants of the two layers (docs/theory.md §14; [Liu2020] Table 4 for LdB
+// granite). A layer switched off keeps its keys (a batch case may switch it), required only when
+// on.
+std::shared_ptr<const loading::ModeSettings> CorrosionMode::read_table(io::TomlSection& sec,
+                                                                       io::TomlSection& top,
+                                                                       const io::ModelConfig& cfg) {
+  if (!cfg.grains)
+    top.fail("corrosion",
+             "stress corrosion needs a grain-based specimen ([specimen] kind = "
+             "\"grains\"): its layers act inside grains and on grain boundaries");
+  auto c = std::make_shared<CorrosionConfig>();
+  c->rate.beta_up = sec.positive("beta_up", laws::required);
+  c->rate.beta_low = sec.positive("beta_low", laws::required);
+  c->rate.r_mid = sec.positive("r_mid", laws::required);
+  c->rate.k_v = sec.number("k_v", laws::required);
+  if (c->rate.k_v >= 0)
+    sec.fail("k_v", fmt::format("must be negative: the rate rises with the driving-stress ratio "
+                                "(got {})",
+                                c->rate.k_v));
+  c->beta3_per_beta1 = sec.positive("beta3_per_beta1", 1.0);
+  c->transgranular = sec.boolean("transgranular", true);
+  c->intergranular = sec.boolean("intergranular", true);
+  if (!c->transgranular && !c->intergranular)
+    sec.fail("intergranular", "at least one of transgranular and intergranular must be on");
+  const io::GrainConfig& g = *cfg.grains;
+  const auto bonded_law = [&](const io::LawChoice& law, const char* key) {
+    if (!laws::find_law(law.name)->make(law.params, 0)->degradable_bonds())
+      sec.fail(key, fmt::format("corrodes bonds that a law lets it degrade; law '{}' has none (its "
+                                "strength is not a bond the corrosion layers can weaken)",
+                                law.name));
+  };
+  const auto needed = [](bool on) { return on ? laws::required : 1.0; };
+  if (c->transgranular) {
+    bonded_law(g.transgranular, "transgranular");
+    for (const auto& in : g.inside)
+      if (in) bonded_law(*in, "transgranular");
+  }
+  c->bonded.beta2 = sec.positive("beta2", needed(c->transgranular));
+  c->bonded.activation_stress = sec.non_negative("activation_stress", needed(c->transgranular));
+  c->bonded.xi_a = sec.positive("min_length_ratio", 0.01);
+  if (c->bonded.xi_a >= 1) sec.fail("min_length_ratio", "must be < 1");
+  if (c->intergranular) {
+    bonded_law(g.intergranular, "intergranular");
+    for (const auto& p : g.pairs) bonded_law(p.law, "intergranular");
+  }
+  c->degradation.beta4 = sec.positive("beta4", needed(c->intergranular));
+  c->degradation.m_s = sec.non_negative("activation_level", needed(c->intergranular) * 0.5);
+  if (c->degradation.m_s >= 1) sec.fail("activation_level", "must be < 1");
+  c->degradation.lambda_a = sec.positive("min_strength_factor", 0.01);
+  if (c->degradation.lambda_a >= 1) sec.fail("min_strength_factor", "must be < 1");
+  return c;
+}
+
+// control = "corrosion": the servo holds sigma1 = sigma3 + rs (sf - sigma3) while the layers of
+// [corrosion] run, until collapse or the duration (it does not end when the target is held).
+std::shared_ptr<const loading::ModeSettings> CorrosionMode::read_stage(io::TomlSection& sec,
+                                                                       loading::Stage& st,
+                                                                       const io::ModelConfig& cfg) {
+  if (!cfg.mode_tables.count(keys.table))
+    sec.fail("control", "a corrosion stage needs a [corrosion] table (the layers' constants)");
+  st.control = loading::Control::axial_stress;
+  auto c = std::make_shared<CorrosionSettings>();
+  c->driving_stress_ratio = sec.positive("driving_stress_ratio", laws::required);
+  if (c->driving_stress_ratio >= 1)
+    sec.fail("driving_stress_ratio",
+             fmt::format("must be in (0, 1) (got {})", c->driving_stress_ratio));
+  const double s3 = cfg.load_path.confining_stress;
+  c->peak_stress = sec.positive("peak_stress", laws::required);
+  if (c->peak_stress <= s3)
+    sec.fail("peak_stress",
+             fmt::format("must exceed the confining stress {} Pa (got {})", s3, c->peak_stress));
+  st.target_stress = s3 + c->driving_stress_ratio * (c->peak_stress - s3);
+  st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
+  c->steps_per_failure = sec.number("steps_per_failure", c->steps_per_failure);
+  if (!(c->steps_per_failure >= 1))
+    sec.fail("steps_per_failure", fmt::format("n_c must be >= 1 (got {})", c->steps_per_failure));
+  const std::string held = "held";
+  const std::string ttf = sec.string("time_to_failure", &held);
+  if (ttf != "held" && ttf != "frozen")
+    sec.fail("time_to_failure",
+             fmt::format("must be \"held\" (forces held, integrated) or "
+                         "\"frozen\" (the rate frozen, [Potyondy2007]) (got \"{}\")",
+                         ttf));
+  c->frozen_rate = ttf == "frozen";
+  c->equilibrium_ratio = sec.positive("equilibrium_ratio", c->equilibrium_ratio);
+  c->check_interval = sec.integer("check_interval", c->check_interval, 1);
+  c->max_equilibrium_steps = sec.integer("max_equilibrium_steps", c->max_equilibrium_steps, 1);
+  int given = 0;
+  for (const auto& [key, unit] : {std::pair{"duration", 1.0}, std::pair{"duration_days", 86400.0},
+                                  std::pair{"duration_years", 365.25 * 86400.0}})
+    if (sec.has(key)) {
+      if (++given > 1)
+        sec.fail(key, "give at most one of duration (s), duration_days and duration_years");
+      c->max_time = unit * sec.positive(key, laws::required);
+    }
+  if (sec.has("end_time")) sec.fail("end_time", "a corrosion stage ends by failure or duration");
+  if (cfg.deformable.enabled)
+    sec.fail("control", "corrosion stages need rigid blocks ([blocks] deformable = false)");
+  return c;
 }
 
 }  // namespace vorodec::run

@@ -1,9 +1,10 @@
 #pragma once
-// The corrosion mode (stages with corrosion = true). A corrosion stage's time advancement
-// (docs/theory.md §14.4; [Potyondy2007]'s psc.fis, [Liu2020] Fig. 9). At each equilibrium under the
-// held stress: every corroding bond's time to failure, forces held; one corrosion step for all; the
-// degraded bonds. A specimen that finds no equilibrium within max_equilibrium_steps has collapsed:
-// the corrosion time of its last equilibrium is its failure time.
+// The corrosion mode (stages with control = "corrosion", constants in [corrosion]). A corrosion
+// stage's time advancement (docs/theory.md §14.4; [Potyondy2007]'s psc.fis, [Liu2020] Fig. 9). At
+// each equilibrium under the held stress: every corroding bond's time to failure, forces held; one
+// corrosion step for all; the degraded bonds. A specimen that finds no equilibrium within
+// max_equilibrium_steps has collapsed: the corrosion time of its last equilibrium is its failure
+// time.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -16,9 +17,45 @@
 #include "vorodec/checkpoint/archive_io.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/input/model_file.hpp"
+#include "vorodec/input/toml_section.hpp"
+#include "vorodec/laws/stress_corrosion.hpp"
 #include "vorodec/measure/specimen.hpp"
 
 namespace vorodec::run {
+
+// [corrosion]: the stress-corrosion layers of a grain-based specimen (docs/theory.md §14;
+// [Liu2020]).
+struct CorrosionConfig final : loading::ModeSettings {
+  laws::DrivingRate rate;        // beta1(rs): m/s for bonded lengths
+  double beta3_per_beta1 = 1.0;  // 1/m: beta3 (1/s, strength factors) = this x beta1
+  bool transgranular = true;     // bonded-length reduction inside grains
+  bool intergranular = true;     // strength degradation on grain boundaries
+  laws::BondedLength bonded;
+  laws::StrengthDegradation degradation;
+};
+
+// A corrosion stage (static fatigue, docs/theory.md §14.4): an axial-stress servo holds
+// sigma1 = sigma3 + rs (sf - sigma3); at each equilibrium the stress-corrosion layers advance the
+// corrosion clock by one step.
+struct CorrosionSettings final : loading::ModeSettings {
+  double driving_stress_ratio = 0.0;  // -, rs in (0, 1)
+  double peak_stress = 0.0;           // Pa, sf: short-term peak axial stress at this confinement
+  // n_c: the first corrosion step is the shortest estimated time to failure / n_c; after n_c
+  // steps without a break the step doubles; a break starts again from an estimate ([Potyondy2007]).
+  double steps_per_failure = 4.0;
+  // Time to failure and degradation over a step with each bond's forces held: integrated exactly
+  // (laws::held_time), or with the rate frozen at its start ([Potyondy2007]'s estimate,
+  // frozen_rate).
+  bool frozen_rate = false;
+  double equilibrium_ratio = 1e-4;      // -, unbalanced-force ratio of an equilibrium
+  long check_interval = 50;             // steps between equilibrium checks
+  long max_equilibrium_steps = 100000;  // more without equilibrium: the specimen collapsed
+  double max_time = std::numeric_limits<double>::infinity();  // s of corrosion time, then stop
+};
+
+inline const CorrosionSettings& corrosion_settings(const loading::Stage& stage) {
+  return static_cast<const CorrosionSettings&>(*stage.mode_settings);
+}
 
 // What a corrosion stage did (summary.json).
 struct CorrosionStageReport {
@@ -55,12 +92,12 @@ class CorrosionControl {
  public:
   enum class Next { step, corroded, collapsed, no_corrosion, time_up };
   // Starts the stage: the corroding bonds of the specimen as they are now.
-  CorrosionControl(const loading::Stage& stage, const io::CorrosionConfig& config,
+  CorrosionControl(const loading::Stage& stage, const CorrosionConfig& config,
                    const model::Model& model, const solver::Solver& solver,
                    std::span<const std::int32_t> block_grain);
   // A control whose state a checkpoint then loads.
-  CorrosionControl(const loading::Stage& stage, const io::CorrosionConfig& config)
-      : stage_(stage), config_(config), clock_(stage.corrosion.steps_per_failure) {}
+  CorrosionControl(const loading::Stage& stage, const CorrosionConfig& config)
+      : stage_(stage), config_(config), clock_(corrosion_settings(stage).steps_per_failure) {}
   // After each solver step of the stage: at an equilibrium, one corrosion step (corroded).
   Next after_step(solver::Solver& solver, model::Model& model, const measure::SpecimenState& s);
   double time() const { return report_.time; }
@@ -96,7 +133,7 @@ class CorrosionControl {
   void break_contacts(Step& s, const std::vector<std::size_t>& list, bool tension, long& n);
 
   const loading::Stage& stage_;
-  const io::CorrosionConfig& config_;
+  const CorrosionConfig& config_;
   std::vector<Bond> bonds_;  // joints' bonds first, grain-boundary contacts from inter_begin_
   std::vector<Joint> joints_;
   std::size_t inter_begin_ = 0;
@@ -112,9 +149,23 @@ class CorrosionControl {
 
 class CorrosionMode final : public StageMode {
  public:
+  // The model-file keys: the [corrosion] table and a corrosion stage's (docs/model-file.md).
+  static std::shared_ptr<const loading::ModeSettings> read_table(io::TomlSection& sec,
+                                                                 io::TomlSection& top,
+                                                                 const io::ModelConfig& cfg);
+  static std::shared_ptr<const loading::ModeSettings> read_stage(io::TomlSection& sec,
+                                                                 loading::Stage& st,
+                                                                 const io::ModelConfig& cfg);
+  static constexpr io::StageModeKeys keys{"corrosion", "corrosion", read_table, read_stage};
+
   explicit CorrosionMode(const DriverContext& c)
-      : cfg_(c.cfg), model_(c.model), solver_(c.solver), specimen_(c.specimen) {}
-  bool runs(const loading::Stage& stage) const override { return stage.corrosion.enabled; }
+      : cfg_(c.cfg),
+        config_(static_cast<const CorrosionConfig*>(c.cfg.mode_tables.count(keys.table)
+                                                        ? c.cfg.mode_tables.at(keys.table).get()
+                                                        : nullptr)),
+        model_(c.model),
+        solver_(c.solver),
+        specimen_(c.specimen) {}
   void begin_stage(const StageContext& c) override;
   ModeVerdict after_step(const StageContext& c, const measure::SpecimenState& s) override;
   std::string unstable(const StageContext& c, const std::string& what) override;
@@ -131,6 +182,7 @@ class CorrosionMode final : public StageMode {
 
  private:
   const io::ModelConfig& cfg_;
+  const CorrosionConfig* config_;  // the [corrosion] table (nullptr: none)
   model::Model& model_;
   solver::Solver& solver_;
   const geometry::Tessellation& specimen_;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "vorodec/io/json.hpp"
+#include "vorodec/laws/contact_law.hpp"
 
 namespace vorodec::run {
 
@@ -26,8 +27,9 @@ constexpr double min_step_fraction = 1e-4;
 
 CreepControl::CreepControl(const loading::Stage& stage, solver::Solver& solver)
     : stage_(stage),
-      max_dt_(stage.creep.time_step > 0 ? stage.creep.time_step
-                                        : stage.creep.step_factor * solver.relaxation_time()),
+      max_dt_(creep_settings(stage).time_step > 0
+                  ? creep_settings(stage).time_step
+                  : creep_settings(stage).step_factor * solver.relaxation_time()),
       window_(stage.end.duration / 200.0) {
   solver.rescale_time_step(max_dt_);
   report_.max_time_step = report_.min_time_step = solver.dt();
@@ -52,7 +54,7 @@ bool CreepControl::after_step(solver::Solver& solver, const measure::SpecimenSta
     collapsed =
         min_rate_ > 0 && std::isfinite(min_rate_) && rate > collapse_rate_factor * min_rate_;
   }
-  const loading::CreepSettings& c = stage_.creep;
+  const CreepSettings& c = creep_settings(stage_);
   if (solver.steps() % c.interval_steps == 0) {
     const double strain = solver.contact_strain_energy();
     if (strain > 0)
@@ -74,6 +76,62 @@ bool CreepControl::after_step(solver::Solver& solver, const measure::SpecimenSta
   }
   if (collapsed) collapsed_at(ts);
   return collapsed;
+}
+
+namespace {
+
+bool viscous_law(const io::LawChoice& c) {
+  return laws::find_law(c.name)->make(c.params, 0)->viscous();
+}
+
+bool viscous_joints(const io::ModelConfig& cfg) {
+  if (viscous_law(cfg.joints) || (cfg.joint_mix && viscous_law(cfg.joint_mix->law))) return true;
+  if (!cfg.grains) return false;
+  const io::GrainConfig& g = *cfg.grains;
+  if (viscous_law(g.transgranular)) return true;
+  for (const auto& in : g.inside)
+    if (in && viscous_law(*in)) return true;
+  for (const auto& p : g.pairs)
+    if (viscous_law(p.law)) return true;
+  return false;
+}
+
+}  // namespace
+
+// control = "creep": the servo holds sigma1 = confining_stress + deviatoric_stress for a duration
+// (s) or duration_days, at the creep step; the stage ends when its duration is up.
+std::shared_ptr<const loading::ModeSettings> CreepMode::read_stage(io::TomlSection& sec,
+                                                                   loading::Stage& st,
+                                                                   const io::ModelConfig& cfg) {
+  auto c = std::make_shared<CreepSettings>();
+  st.control = loading::Control::axial_stress;
+  st.target_stress =
+      cfg.load_path.confining_stress + sec.positive("deviatoric_stress", laws::required);
+  st.end.stress = st.target_stress;
+  // The servo closes 80 % of the force error per step; a creep step is seconds long, so its speed
+  // cap (m/s) is off unless given.
+  st.platen_velocity = sec.positive("platen_velocity", 1e300);
+  const bool seconds = sec.has("duration"), days = sec.has("duration_days");
+  if (seconds == days)
+    sec.fail(seconds ? "duration_days" : "duration",
+             "a creep stage needs exactly one of duration (s) and duration_days (d)");
+  st.end.duration = seconds ? sec.positive("duration", laws::required)
+                            : 86400.0 * sec.positive("duration_days", laws::required);
+  if (sec.has("end_time")) sec.fail("end_time", "a creep stage ends by duration or duration_days");
+  c->step_factor = sec.positive("creep_step_factor", c->step_factor);
+  if (sec.has("creep_time_step")) c->time_step = sec.positive("creep_time_step", 0);
+  c->target_ratio = sec.positive("creep_target_ratio", c->target_ratio);
+  c->interval_steps = sec.integer("creep_interval_steps", c->interval_steps, 1);
+  if (cfg.deformable.enabled)
+    sec.fail("control", "creep stages need rigid blocks ([blocks] deformable = false)");
+  if (cfg.solver.fixed_time_step > 0)
+    sec.fail("control", "creep stages set the step themselves: remove [solver] fixed_time_step");
+  if (c->time_step == 0 && !viscous_joints(cfg))
+    sec.fail("control",
+             fmt::format("a creep stage sizes its step from the contacts' dashpots, and law '{}' "
+                         "has none: use law = \"burgers\" or give creep_time_step (s)",
+                         cfg.joints.name));
+  return c;
 }
 
 // The start of the run of windows whose rate rose each time, up to the collapse.

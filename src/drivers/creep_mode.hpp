@@ -1,8 +1,8 @@
 #pragma once
-// The creep mode (stages with creep = true). A creep stage's clock: the creep step (density scaling
-// sized to the contacts' relaxation time, adapted by the unbalanced-force ratio), how quasi-static
-// the stage stayed (its largest kinetic over strain energy), and creep failure: the collapse that
-// ends the stage and the onset of the accelerating (tertiary) creep before it.
+// The creep mode (stages with control = "creep"). A creep stage's clock: the creep step (density
+// scaling sized to the contacts' relaxation time, adapted by the unbalanced-force ratio), how
+// quasi-static the stage stayed (its largest kinetic over strain energy), and creep failure: the
+// collapse that ends the stage and the onset of the accelerating (tertiary) creep before it.
 #include <limits>
 #include <optional>
 #include <string>
@@ -12,11 +12,30 @@
 #include "stage_mode.hpp"
 #include "vorodec/checkpoint/archive_io.hpp"
 #include "vorodec/engine/prepared_model.hpp"
+#include "vorodec/input/toml_section.hpp"
 #include "vorodec/loading/load_path.hpp"
 #include "vorodec/measure/specimen.hpp"
 #include "vorodec/solver/solver.hpp"
 
 namespace vorodec::run {
+
+// A creep stage (an axial-stress stage that holds sigma1 - sigma3): the mechanical step is the
+// creep step, with density scaling sized to it (PFC's and UDEC's creep modes), and the run
+// watches for creep failure.
+struct CreepSettings final : loading::ModeSettings {
+  // -, the largest creep step as a fraction of the contacts' shortest relaxation time (Ck/Kk or
+  // Cm/Km); time_step > 0 (s) gives it directly instead.
+  double step_factor = 1e-3;
+  double time_step = 0.0;
+  // The step shrinks (x 0.7) while the unbalanced-force ratio is above target_ratio, and grows
+  // back (x 1.2, up to the largest) while it is below a third of it; checked every interval_steps.
+  double target_ratio = 1e-3;
+  long interval_steps = 100;
+};
+
+inline const CreepSettings& creep_settings(const loading::Stage& stage) {
+  return static_cast<const CreepSettings&>(*stage.mode_settings);
+}
 
 // What a creep stage did (summary.json).
 struct CreepStageReport {
@@ -65,8 +84,13 @@ class CreepControl {
 
 class CreepMode final : public StageMode {
  public:
+  // The model-file keys of a creep stage (docs/model-file.md, "Creep stages").
+  static std::shared_ptr<const loading::ModeSettings> read_stage(io::TomlSection& sec,
+                                                                 loading::Stage& st,
+                                                                 const io::ModelConfig& cfg);
+  static constexpr io::StageModeKeys keys{"creep", nullptr, nullptr, read_stage};
+
   explicit CreepMode(const DriverContext& c) : cfg_(c.cfg), solver_(c.solver) {}
-  bool runs(const loading::Stage& stage) const override { return stage.creep.enabled; }
   void begin_stage(const StageContext& c) override { control_.emplace(c.stage, solver_); }
   bool sets_time_step() const override { return true; }
   ModeVerdict after_step(const StageContext& c, const measure::SpecimenState& s) override;

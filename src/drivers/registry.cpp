@@ -5,6 +5,7 @@
 
 #include "quasi_static_driver.hpp"
 #include "shpb_driver.hpp"
+#include "stage_mode.hpp"
 
 namespace vorodec::run {
 
@@ -42,6 +43,11 @@ std::unique_ptr<Driver> make_driver(const DriverContext& c) {
 
 std::string driver_name(const io::ModelConfig& cfg) {
   return row_for(cfg).name;
+}
+
+io::ModelConfig read_model_file(const std::filesystem::path& file,
+                                const std::vector<io::Override>& overrides) {
+  return io::read_model_file(file, overrides, stage_mode_keys());
 }
 
 }  // namespace vorodec::run

@@ -1,11 +1,12 @@
 #pragma once
 // A stage mode: what a kind of quasi-static stage does beyond its platen control (creep: a
 // density-scaled creep step and creep failure; corrosion: the bonds' static fatigue). One object
-// per run for each mode its stages use, made by its row in stage_modes.cpp. It brings its history
-// columns, its progress text, its summary.json section and its checkpoint state, so the driver
-// knows none of them.
+// per run for each mode its stages use, made by its row in stage_modes.cpp. It brings its
+// model-file keys (io::StageModeKeys), its history columns, its progress text, its summary.json
+// section and its checkpoint state, so neither the model-file reader nor the driver knows them.
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,8 +36,8 @@ struct ModeVerdict {
 class StageMode {
  public:
   virtual ~StageMode() = default;
-  // Whether `stage` is one of this mode's.
-  virtual bool runs(const loading::Stage& stage) const = 0;
+  // Whether `stage` is one of this mode's (its control is the mode's).
+  bool runs(const loading::Stage& stage) const { return stage.mode == control_; }
   // The stage starts (the driver restores the model file's time step after unless this is true).
   virtual void begin_stage(const StageContext& c) = 0;
   virtual bool sets_time_step() const { return false; }
@@ -54,6 +55,10 @@ class StageMode {
   // Checkpoints: its state; `current` is the stage the driver stands at when loading.
   virtual void save(checkpoint::OutArchive& ar) const = 0;
   virtual void load(checkpoint::InArchive& ar, const loading::Stage& current) = 0;
+
+ private:
+  friend std::vector<std::unique_ptr<StageMode>> make_stage_modes(const DriverContext& c);
+  std::string control_;  // the row's io::StageModeKeys::control
 };
 
 // A mode's (stage index, report) list through a checkpoint, as two plain vectors.
@@ -105,5 +110,8 @@ void load_mode_state(checkpoint::InArchive& ar, std::optional<Control>& control,
 
 // The modes the load path's stages use, in the order of the table in stage_modes.cpp.
 std::vector<std::unique_ptr<StageMode>> make_stage_modes(const DriverContext& c);
+
+// Every mode's model-file keys, in the same order.
+std::span<const io::StageModeKeys> stage_mode_keys();
 
 }  // namespace vorodec::run

@@ -47,7 +47,7 @@ toml::table load(const std::filesystem::path& file, int depth,
 }
 
 // The tables in the order their keys are checked (sections.hpp says where each is read).
-void read_root(const toml::table& root, ModelConfig& cfg) {
+void read_root(const toml::table& root, ModelConfig& cfg, std::span<const StageModeKeys> modes) {
   TomlSection top(root, "", cfg.file.string());
   const std::string empty;
   cfg.title = top.string("title", &empty);
@@ -60,11 +60,11 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
   read_contact_table(top, cfg);
   read_solver_table(top, cfg);
   read_loading_table(top, cfg);
-  read_corrosion_table(top, cfg);
+  read_mode_tables(top, cfg, modes);
   if (top.has("shpb"))
     read_shpb_table(top, cfg);
   else
-    read_stage_tables(top, cfg);
+    read_stage_tables(top, cfg, modes);
   read_quiet_boundary_table(top, cfg);
   read_output_table(top, cfg);
   top.finish();
@@ -74,13 +74,14 @@ void read_root(const toml::table& root, ModelConfig& cfg) {
 }  // namespace
 
 ModelConfig read_model_file(const std::filesystem::path& file,
-                            const std::vector<Override>& overrides) {
+                            const std::vector<Override>& overrides,
+                            std::span<const StageModeKeys> modes) {
   ModelConfig cfg;
   cfg.file = file;
   toml::table root = load(file, 0, cfg.sources);
   for (const Override& o : overrides) apply_override(root, o, file.string());
   try {
-    read_root(root, cfg);
+    read_root(root, cfg, modes);
   } catch (const ModelFileError& e) {
     for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {  // the last one set the value
       if (!concerns(e.key(), o->key)) continue;

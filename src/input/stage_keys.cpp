@@ -1,7 +1,9 @@
-// The [[stage]] tables: each stage's control (platen velocity, axial stress, stress rate, creep,
-// corrosion, or a cyclic block of stages), its end conditions and an implicit start.
+// The [[stage]] tables: each stage's control (platen velocity, axial stress, stress rate, a stage
+// mode's such as creep or corrosion, or a cyclic block of stages), its end conditions and an
+// implicit start; and the stage modes' own top-level tables.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "sections.hpp"
@@ -61,7 +63,7 @@ loading::AdaptiveVelocity read_adaptive(TomlSection sec, double v0) {
 }
 
 // stage key implicit_start: the first velocity stage of a rigid-block model without gravity,
-// loaded from rest by compression (app/implicit_start).
+// loaded from rest by compression (drivers/implicit_start).
 void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, ModelConfig& cfg) {
   st.implicit_start = sec.boolean("implicit_start", false);
   if (!st.implicit_start) {
@@ -89,102 +91,10 @@ void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, Model
           : fmt::format("{}: --set key '{}'", sec.file(), sec.key_path("implicit_start"));
 }
 
-bool viscous_law(const LawChoice& c) {
-  return laws::find_law(c.name)->make(c.params, 0)->viscous();
-}
-bool viscous_joints(const ModelConfig& cfg) {
-  if (viscous_law(cfg.joints) || (cfg.joint_mix && viscous_law(cfg.joint_mix->law))) return true;
-  if (!cfg.grains) return false;
-  const GrainConfig& g = *cfg.grains;
-  if (viscous_law(g.transgranular)) return true;
-  for (const auto& in : g.inside)
-    if (in && viscous_law(*in)) return true;
-  for (const auto& p : g.pairs)
-    if (viscous_law(p.law)) return true;
-  return false;
-}
-
-// control = "creep": the servo holds sigma1 = confining_stress + deviatoric_stress for a duration
-// (s) or duration_days, at the creep step (loading::CreepSettings).
-void read_creep(TomlSection& sec, loading::Stage& st, const ModelConfig& cfg) {
-  st.control = loading::Control::axial_stress;
-  st.creep.enabled = true;
-  st.target_stress =
-      cfg.load_path.confining_stress + sec.positive("deviatoric_stress", laws::required);
-  // The servo closes 80 % of the force error per step; a creep step is seconds long, so its speed
-  // cap (m/s) is off unless given.
-  st.platen_velocity = sec.positive("platen_velocity", 1e300);
-  const bool seconds = sec.has("duration"), days = sec.has("duration_days");
-  if (seconds == days)
-    sec.fail(seconds ? "duration_days" : "duration",
-             "a creep stage needs exactly one of duration (s) and duration_days (d)");
-  st.end.duration = seconds ? sec.positive("duration", laws::required)
-                            : 86400.0 * sec.positive("duration_days", laws::required);
-  if (sec.has("end_time")) sec.fail("end_time", "a creep stage ends by duration or duration_days");
-  st.creep.step_factor = sec.positive("creep_step_factor", st.creep.step_factor);
-  if (sec.has("creep_time_step")) st.creep.time_step = sec.positive("creep_time_step", 0);
-  st.creep.target_ratio = sec.positive("creep_target_ratio", st.creep.target_ratio);
-  st.creep.interval_steps = sec.integer("creep_interval_steps", st.creep.interval_steps, 1);
-  if (cfg.deformable.enabled)
-    sec.fail("control", "creep stages need rigid blocks ([blocks] deformable = false)");
-  if (cfg.solver.fixed_time_step > 0)
-    sec.fail("control", "creep stages set the step themselves: remove [solver] fixed_time_step");
-  if (st.creep.time_step == 0 && !viscous_joints(cfg))
-    sec.fail("control",
-             fmt::format("a creep stage sizes its step from the contacts' dashpots, and law '{}' "
-                         "has none: use law = \"burgers\" or give creep_time_step (s)",
-                         cfg.joints.name));
-}
-
-// control = "corrosion": the servo holds sigma1 = sigma3 + rs (sf - sigma3) while the corrosion
-// layers of [corrosion] run (loading::CorrosionSettings), until collapse or the duration.
-void read_corrosion_stage(TomlSection& sec, loading::Stage& st, const ModelConfig& cfg) {
-  if (!cfg.corrosion)
-    sec.fail("control", "a corrosion stage needs a [corrosion] table (the layers' constants)");
-  st.control = loading::Control::axial_stress;
-  loading::CorrosionSettings& c = st.corrosion;
-  c.enabled = true;
-  c.driving_stress_ratio = sec.positive("driving_stress_ratio", laws::required);
-  if (c.driving_stress_ratio >= 1)
-    sec.fail("driving_stress_ratio",
-             fmt::format("must be in (0, 1) (got {})", c.driving_stress_ratio));
-  const double s3 = cfg.load_path.confining_stress;
-  c.peak_stress = sec.positive("peak_stress", laws::required);
-  if (c.peak_stress <= s3)
-    sec.fail("peak_stress",
-             fmt::format("must exceed the confining stress {} Pa (got {})", s3, c.peak_stress));
-  st.target_stress = s3 + c.driving_stress_ratio * (c.peak_stress - s3);
-  st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
-  c.steps_per_failure = sec.number("steps_per_failure", c.steps_per_failure);
-  if (!(c.steps_per_failure >= 1))
-    sec.fail("steps_per_failure", fmt::format("n_c must be >= 1 (got {})", c.steps_per_failure));
-  const std::string held = "held";
-  const std::string ttf = sec.string("time_to_failure", &held);
-  if (ttf != "held" && ttf != "frozen")
-    sec.fail("time_to_failure",
-             fmt::format("must be \"held\" (forces held, integrated) or "
-                         "\"frozen\" (the rate frozen, [Potyondy2007]) (got \"{}\")",
-                         ttf));
-  c.frozen_rate = ttf == "frozen";
-  c.equilibrium_ratio = sec.positive("equilibrium_ratio", c.equilibrium_ratio);
-  c.check_interval = sec.integer("check_interval", c.check_interval, 1);
-  c.max_equilibrium_steps = sec.integer("max_equilibrium_steps", c.max_equilibrium_steps, 1);
-  int given = 0;
-  for (const auto& [key, unit] : {std::pair{"duration", 1.0}, std::pair{"duration_days", 86400.0},
-                                  std::pair{"duration_years", 365.25 * 86400.0}})
-    if (sec.has(key)) {
-      if (++given > 1)
-        sec.fail(key, "give at most one of duration (s), duration_days and duration_years");
-      c.max_time = unit * sec.positive(key, laws::required);
-    }
-  if (sec.has("end_time")) sec.fail("end_time", "a corrosion stage ends by failure or duration");
-  if (cfg.deformable.enabled)
-    sec.fail("control", "corrosion stages need rigid blocks ([blocks] deformable = false)");
-}
-
-// The keys of the stage's `control` (any but "cyclic").
+// The keys of the stage's `control` (any but "cyclic"): a plain control's here, a mode's by the
+// mode's own reader.
 void read_control(TomlSection& sec, const std::string& control, loading::Stage& st,
-                  const ModelConfig& cfg) {
+                  const ModelConfig& cfg, std::span<const StageModeKeys> modes) {
   if (control == "platen_velocity") {
     st.control = loading::Control::platen_velocity;
     st.platen_velocity = sec.number("platen_velocity", laws::required);
@@ -194,20 +104,21 @@ void read_control(TomlSection& sec, const std::string& control, loading::Stage& 
     st.control = loading::Control::axial_stress;
     st.target_stress = sec.non_negative("target_stress", laws::required);
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
-  } else if (control == "creep") {
-    read_creep(sec, st, cfg);
-  } else if (control == "corrosion") {
-    read_corrosion_stage(sec, st, cfg);
   } else if (control == "stress_rate") {
     st.control = loading::Control::stress_rate;
     st.stress_rate = sec.number("stress_rate", laws::required);
     if (st.stress_rate == 0) sec.fail("stress_rate", "must not be 0");
     st.platen_velocity = sec.positive("platen_velocity", 0.05);  // servo's speed cap
   } else {
-    sec.fail("control",
-             fmt::format("must be \"platen_velocity\", \"axial_stress\", "
-                         "\"stress_rate\", \"creep\", \"corrosion\" or \"cyclic\" (got \"{}\")",
-                         control));
+    const auto mode = std::find_if(modes.begin(), modes.end(),
+                                   [&](const StageModeKeys& m) { return control == m.control; });
+    if (mode == modes.end()) {
+      std::string names = "\"platen_velocity\", \"axial_stress\", \"stress_rate\"";
+      for (const StageModeKeys& m : modes) names += fmt::format(", \"{}\"", m.control);
+      sec.fail("control", fmt::format("must be {} or \"cyclic\" (got \"{}\")", names, control));
+    }
+    st.mode = mode->control;
+    st.mode_settings = mode->read_stage(sec, st, cfg);
   }
 }
 
@@ -221,7 +132,7 @@ void read_end(TomlSection& sec, loading::Stage& st) {
     if (!(st.end.post_peak_fraction > 0 && st.end.post_peak_fraction < 1))
       sec.fail("end_post_peak_fraction", "must be between 0 and 1");
   }
-  if (st.control != loading::Control::axial_stress || !(st.creep.enabled || st.corrosion.enabled))
+  if (st.mode.empty())  // a mode's stage ends as its reader says
     st.end.duration = sec.has("end_time") ? sec.positive("end_time", nan) : nan;
   st.end.axial_stress = sec.has("end_axial_stress") ? sec.number("end_axial_stress", nan) : nan;
   if (st.control == loading::Control::stress_rate && std::isnan(st.end.axial_stress) &&
@@ -233,14 +144,13 @@ void read_end(TomlSection& sec, loading::Stage& st) {
     sec.fail("end_axial_strain",
              "a stage needs an end condition: end_axial_strain, end_post_peak_fraction, "
              "end_axial_stress or end_time");
-  // A corrosion stage holds its stress until failure: it does not end when the target is held.
-  if (st.control == loading::Control::axial_stress && !st.corrosion.enabled)
+  if (st.mode.empty() && st.control == loading::Control::axial_stress)
     st.end.stress = st.target_stress;
 }
 
 // One [[stage]] table: a single stage, or a cyclic block expanded into its stages.
 void read_stage(TomlSection sec, std::size_t index, std::vector<loading::Stage>& stages,
-                ModelConfig& cfg) {
+                ModelConfig& cfg, std::span<const StageModeKeys> modes) {
   loading::Stage st;
   const std::string fallback = fmt::format("stage {}", index + 1);
   const std::string vel = "platen_velocity";
@@ -254,7 +164,7 @@ void read_stage(TomlSection sec, std::size_t index, std::vector<loading::Stage>&
     return;
   }
   st.name = sec.string("name", &fallback);
-  read_control(sec, control, st, cfg);
+  read_control(sec, control, st, cfg, modes);
   st.ramp_time = sec.non_negative("ramp_time", 0.0);
   read_end(sec, st);
   read_implicit_start(sec, st, index == 0 && stages.empty(), cfg);
@@ -264,14 +174,23 @@ void read_stage(TomlSection sec, std::size_t index, std::vector<loading::Stage>&
 
 }  // namespace
 
-void read_stage_tables(TomlSection& top, ModelConfig& cfg) {
+void read_mode_tables(TomlSection& top, ModelConfig& cfg, std::span<const StageModeKeys> modes) {
+  for (const StageModeKeys& m : modes)
+    if (m.table && top.has(m.table)) {
+      TomlSection table = top.sub(m.table);
+      cfg.mode_tables[m.table] = m.read_table(table, top, cfg);
+      table.finish();
+    }
+}
+
+void read_stage_tables(TomlSection& top, ModelConfig& cfg, std::span<const StageModeKeys> modes) {
   const toml::node* stages = top.node("stage");
   if (!stages || !stages->is_array_of_tables())
     top.fail("stage", "at least one [[stage]] table (or a [shpb] test) is required");
   const toml::array& list = *stages->as_array();
   for (std::size_t i = 0; i < list.size(); ++i)
     read_stage(TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), top.file()), i,
-               cfg.load_path.stages, cfg);
+               cfg.load_path.stages, cfg, modes);
 }
 
 }  // namespace vorodec::io

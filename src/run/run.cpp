@@ -196,7 +196,7 @@ RunSummary resume_run(const fs::path& dir, long stop_at_step, bool progress) {
   std::vector<io::Override> overrides;
   for (std::size_t i = 0; i + 2 < h.overrides.size(); i += 3)
     overrides.push_back({h.overrides[i], h.overrides[i + 1], h.overrides[i + 2]});
-  const io::ModelConfig cfg = io::read_model_file(h.model_file, overrides);
+  const io::ModelConfig cfg = run::read_model_file(h.model_file, overrides);
   if (hash_of(cfg, overrides) != h.model_hash)
     throw checkpoint::CheckpointError(fmt::format(
         "{}: the model file {} (or a file it reads) changed since the checkpoint was written: "

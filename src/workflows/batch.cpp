@@ -9,6 +9,7 @@
 
 #include "case_runner.hpp"
 #include "cluster.hpp"
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/io/atomic_file.hpp"
 #include "vorodec/workflows/batch_file.hpp"
 
@@ -77,7 +78,7 @@ int run_batch(const BatchOptions& options) {
   BatchPlan plan;
   try {
     plan = read_batch_file(options.batch_file);
-    for (const BatchCase& c : plan.cases) io::read_model_file(c.model, c.overrides);
+    for (const BatchCase& c : plan.cases) run::read_model_file(c.model, c.overrides);
   } catch (const io::ModelFileError& e) {
     if (lead) fmt::print(stderr, "error: {}\n", e.what());
     return bad_input;  // every rank read the same files and stops here alike

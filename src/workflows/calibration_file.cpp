@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/input/override.hpp"
 #include "vorodec/input/toml_section.hpp"
 
@@ -178,7 +179,7 @@ void check_bounds(const CalibrationPlan& plan, const toml::array& list, const st
       v[i] = bound[1] == 'i' ? plan.parameters[i].min : plan.parameters[i].max;
       for (std::size_t t = 0; t < plan.tests.size(); ++t) {
         try {
-          read_model_file(plan.tests[t].model, run_overrides(plan, t, plan.seeds.front(), v));
+          run::read_model_file(plan.tests[t].model, run_overrides(plan, t, plan.seeds.front(), v));
         } catch (const ModelFileError& e) {
           TomlSection sec(*list[i].as_table(), fmt::format("parameter[{}]", i), file);
           sec.fail(bound,
@@ -231,7 +232,7 @@ std::vector<CalibrationTest> read_tests(TomlSection& top, const std::filesystem:
       sec.fail("model", fmt::format("model file '{}' does not exist", t.model.string()));
     t.overrides = read_set(sec);
     sec.finish();
-    t.confining_stress = read_model_file(t.model, t.overrides).load_path.confining_stress;
+    t.confining_stress = run::read_model_file(t.model, t.overrides).load_path.confining_stress;
     list.push_back(std::move(t));
   }
   return list;

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "vorodec/checkpoint/checkpoint_file.hpp"
+#include "vorodec/drivers/registry.hpp"
 #include "vorodec/io/atomic_file.hpp"
 #include "vorodec/run/run.hpp"
 
@@ -52,7 +53,7 @@ std::string joined(const std::vector<std::string>& args) {
 std::string case_identity(const BatchCase& c, const std::vector<std::string>& command) {
   std::vector<std::string> overrides;
   for (const io::Override& o : c.overrides) overrides.insert(overrides.end(), {o.key, o.value});
-  const io::ModelConfig cfg = io::read_model_file(c.model, c.overrides);
+  const io::ModelConfig cfg = run::read_model_file(c.model, c.overrides);
   return joined(command) +
          fmt::format("model files crc32 {:08x}\n", checkpoint::model_hash(cfg.sources, overrides));
 }

@@ -1,8 +1,10 @@
 #pragma once
 // The load paths a model file can describe. Each driver is one row of the table in
 // src/drivers/registry.cpp: its name, whether a model file asks for it, and how it is made.
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "vorodec/engine/driver.hpp"
 #include "vorodec/loading/boundary.hpp"
@@ -25,5 +27,10 @@ std::unique_ptr<Driver> make_driver(const DriverContext& c);
 
 // The name of that row ("shpb", "quasi_static"), for messages.
 std::string driver_name(const io::ModelConfig& cfg);
+
+// The model file read with the keys of every registered stage mode: what runs, batches,
+// calibrations and `vorodec check` read (io::read_model_file).
+io::ModelConfig read_model_file(const std::filesystem::path& file,
+                                const std::vector<io::Override>& overrides = {});
 
 }  // namespace vorodec::run

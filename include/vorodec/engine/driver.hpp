@@ -16,7 +16,7 @@
 
 namespace vorodec::run {
 
-// A pressure-bar test's bars, for the outputs (app/shpb_output).
+// A pressure-bar test's bars, for the outputs (outputs/shpb_output).
 struct BarsView {
   const io::ShpbConfig& cfg;
   // Pa, compression +: the stress in each bar at x m from its face (0: the face itself; else a

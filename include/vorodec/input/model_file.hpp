@@ -2,7 +2,11 @@
 // The model file (TOML): every key documented in README.md, validated with file, key and line.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,7 +15,6 @@
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/io/input_error.hpp"
 #include "vorodec/laws/contact_law.hpp"
-#include "vorodec/laws/stress_corrosion.hpp"
 #include "vorodec/loading/load_path.hpp"
 #include "vorodec/loading/pressure_bar.hpp"
 #include "vorodec/loading/quiet_boundary.hpp"
@@ -52,17 +55,6 @@ struct GrainConfig {
     LawChoice law;     // intergranular law between grains of these minerals
   };
   std::vector<Pair> pairs;
-};
-
-// [corrosion]: the stress-corrosion layers of a grain-based specimen (docs/theory.md §14;
-// [Liu2020]).
-struct CorrosionConfig {
-  laws::DrivingRate rate;        // beta1(rs): m/s for bonded lengths
-  double beta3_per_beta1 = 1.0;  // 1/m: beta3 (1/s, strength factors) = this x beta1
-  bool transgranular = true;     // bonded-length reduction inside grains
-  bool intergranular = true;     // strength degradation on grain boundaries
-  laws::BondedLength bonded;
-  laws::StrengthDegradation degradation;
 };
 
 // [quiet_boundary]: viscous boundaries on sides of the specimen's outline, and a half-sine
@@ -144,7 +136,9 @@ struct ModelConfig {
   };
   std::optional<JointMix> joint_mix;
   std::optional<GrainConfig> grains;  // grain-based specimen
-  std::optional<CorrosionConfig> corrosion;
+  // Top-level tables of the stage modes (e.g. [corrosion]), by table name: what each mode's reader
+  // made of it (StageModeKeys); only that mode reads it back.
+  std::map<std::string, std::shared_ptr<const loading::ModeSettings>, std::less<>> mode_tables;
   std::optional<QuietBoundaryConfig> quiet_boundary;
   std::optional<ShpbConfig> shpb;  // the load path is the bars' (no stages)
   LawChoice platens;               // platen to specimen
@@ -155,9 +149,27 @@ struct ModelConfig {
   OutputSettings output;
 };
 
+class TomlSection;
+
+// A stage mode's model-file keys, read by the mode's own code (src/drivers/<mode>_mode.cpp): the
+// [[stage]] tables with control = `control`, and the mode's top-level table if it has one.
+struct StageModeKeys {
+  const char* control;
+  const char* table;  // nullptr: none
+  // [table] (called when present, after [loading] and before the stages); `top` is the root.
+  std::shared_ptr<const loading::ModeSettings> (*read_table)(TomlSection& table, TomlSection& top,
+                                                             const ModelConfig& cfg);
+  // A stage's keys but name, control, ramp_time and implicit start: the mode sets the stage's
+  // control, target and end conditions, and returns its settings.
+  std::shared_ptr<const loading::ModeSettings> (*read_stage)(TomlSection& stage, loading::Stage& st,
+                                                             const ModelConfig& cfg);
+};
+
 // Overrides are applied to the parsed file, so they are validated like the file's own keys; an
-// error about an override names its origin instead of the model file's line.
+// error about an override names its origin instead of the model file's line. `modes` are the stage
+// modes a stage may name (run::read_model_file passes the registered ones).
 ModelConfig read_model_file(const std::filesystem::path& file,
-                            const std::vector<Override>& overrides = {});
+                            const std::vector<Override>& overrides,
+                            std::span<const StageModeKeys> modes);
 
 }  // namespace vorodec::io

@@ -2,8 +2,8 @@
 // Static linear elastic response of rigid blocks to a prescribed displacement of the held blocks:
 // the contact stiffness K (3 DOFs per block) assembled from the laws' springs, factorised once
 // with CHOLMOD, solved for the free blocks (docs/theory.md §5.6, linearised about the current
-// geometry). The implicit elastic start of a loading stage (app/implicit_start) scales this unit
-// response up to where the first contact would leave its elastic regime.
+// geometry). The implicit elastic start of a loading stage (drivers/implicit_start) scales this
+// unit response up to where the first contact would leave its elastic regime.
 #include <array>
 #include <cstddef>
 #include <limits>

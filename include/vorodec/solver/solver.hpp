@@ -96,7 +96,7 @@ class Solver {
   double contact_stiffness_on(std::size_t b) const;
   // Throws InstabilityError if the state is not finite or contacts overlap by more than d/2.
   void check_stability() const;
-  // Stress corrosion (app/corrosion_control): contact i's bond, false if its law has none.
+  // Stress corrosion (drivers/corrosion_mode): contact i's bond, false if its law has none.
   bool bond(std::size_t i, laws::BondView& out) const;
   // Gives contact i the degraded bond b, carrying (fn, fs) N at its gap; the strain energy this
   // takes from it is the energy term `corrosion`.
