@@ -78,16 +78,15 @@ std::map<std::string, fs::path> asked_for(const std::vector<fs::path>& reader) {
 }
 
 // The model-file reader: every src/input/*.cpp but override.cpp, whose one key (`set`) is the
-// batch and calibration files' (docs/workflows.md), and the stage modes' own readers
-// (src/drivers/*_mode.cpp).
+// batch and calibration files' (docs/workflows.md), and the stage modes' and drivers' own readers
+// (src/drivers/).
 std::vector<fs::path> model_file_reader() {
   std::vector<fs::path> files;
   for (const fs::directory_entry& e : fs::directory_iterator(source / "src/input"))
     if (e.path().extension() == ".cpp" && e.path().filename() != "override.cpp")
       files.push_back(e.path());
   for (const fs::directory_entry& e : fs::directory_iterator(source / "src/drivers"))
-    if (e.path().extension() == ".cpp" && e.path().stem().string().ends_with("_mode"))
-      files.push_back(e.path());
+    if (e.path().extension() == ".cpp") files.push_back(e.path());
   std::sort(files.begin(), files.end());
   return files;
 }

@@ -190,8 +190,9 @@ int model_command(const Options& o, const Commands& c) {
   if (c.check->parsed()) {
     print_report(specimen, cfg);
     fmt::print("{}: ok ({} blocks, {})\n", o.model_path, specimen.blocks.size(),
-               cfg.shpb ? std::string("a pressure-bar test")
-                        : fmt::format("{} stages", cfg.load_path.stages.size()));
+               cfg.load_path.stages.empty()
+                   ? fmt::format("a [{}] test", run::driver_name(cfg))
+                   : fmt::format("{} stages", cfg.load_path.stages.size()));
     return 0;
   }
   if (!prepare_out(out)) return bad_input;

@@ -485,9 +485,8 @@ void CorrosionMode::load(checkpoint::InArchive& ar, const loading::Stage& curren
 // [corrosion]: the constants of the two layers (docs/theory.md §14; [Liu2020] Table 4 for LdB
 // granite). A layer switched off keeps its keys (a batch case may switch it), required only when
 // on.
-std::shared_ptr<const loading::ModeSettings> CorrosionMode::read_table(io::TomlSection& sec,
-                                                                       io::TomlSection& top,
-                                                                       const io::ModelConfig& cfg) {
+std::shared_ptr<const loading::ExtensionSettings> CorrosionMode::read_table(
+    io::TomlSection& sec, io::TomlSection& top, const io::ModelConfig& cfg) {
   if (!cfg.grains)
     top.fail("corrosion",
              "stress corrosion needs a grain-based specimen ([specimen] kind = "
@@ -537,10 +536,9 @@ std::shared_ptr<const loading::ModeSettings> CorrosionMode::read_table(io::TomlS
 
 // control = "corrosion": the servo holds sigma1 = sigma3 + rs (sf - sigma3) while the layers of
 // [corrosion] run, until collapse or the duration (it does not end when the target is held).
-std::shared_ptr<const loading::ModeSettings> CorrosionMode::read_stage(io::TomlSection& sec,
-                                                                       loading::Stage& st,
-                                                                       const io::ModelConfig& cfg) {
-  if (!cfg.mode_tables.count(keys.table))
+std::shared_ptr<const loading::ExtensionSettings> CorrosionMode::read_stage(
+    io::TomlSection& sec, loading::Stage& st, const io::ModelConfig& cfg) {
+  if (!cfg.tables.count(keys.table))
     sec.fail("control", "a corrosion stage needs a [corrosion] table (the layers' constants)");
   st.control = loading::Control::axial_stress;
   auto c = std::make_shared<CorrosionSettings>();

@@ -25,7 +25,7 @@ namespace vorodec::run {
 
 // [corrosion]: the stress-corrosion layers of a grain-based specimen (docs/theory.md §14;
 // [Liu2020]).
-struct CorrosionConfig final : loading::ModeSettings {
+struct CorrosionConfig final : loading::ExtensionSettings {
   laws::DrivingRate rate;        // beta1(rs): m/s for bonded lengths
   double beta3_per_beta1 = 1.0;  // 1/m: beta3 (1/s, strength factors) = this x beta1
   bool transgranular = true;     // bonded-length reduction inside grains
@@ -37,7 +37,7 @@ struct CorrosionConfig final : loading::ModeSettings {
 // A corrosion stage (static fatigue, docs/theory.md §14.4): an axial-stress servo holds
 // sigma1 = sigma3 + rs (sf - sigma3); at each equilibrium the stress-corrosion layers advance the
 // corrosion clock by one step.
-struct CorrosionSettings final : loading::ModeSettings {
+struct CorrosionSettings final : loading::ExtensionSettings {
   double driving_stress_ratio = 0.0;  // -, rs in (0, 1)
   double peak_stress = 0.0;           // Pa, sf: short-term peak axial stress at this confinement
   // n_c: the first corrosion step is the shortest estimated time to failure / n_c; after n_c
@@ -150,19 +150,18 @@ class CorrosionControl {
 class CorrosionMode final : public StageMode {
  public:
   // The model-file keys: the [corrosion] table and a corrosion stage's (docs/model-file.md).
-  static std::shared_ptr<const loading::ModeSettings> read_table(io::TomlSection& sec,
-                                                                 io::TomlSection& top,
-                                                                 const io::ModelConfig& cfg);
-  static std::shared_ptr<const loading::ModeSettings> read_stage(io::TomlSection& sec,
-                                                                 loading::Stage& st,
-                                                                 const io::ModelConfig& cfg);
+  static std::shared_ptr<const loading::ExtensionSettings> read_table(io::TomlSection& sec,
+                                                                      io::TomlSection& top,
+                                                                      const io::ModelConfig& cfg);
+  static std::shared_ptr<const loading::ExtensionSettings> read_stage(io::TomlSection& sec,
+                                                                      loading::Stage& st,
+                                                                      const io::ModelConfig& cfg);
   static constexpr io::StageModeKeys keys{"corrosion", "corrosion", read_table, read_stage};
 
   explicit CorrosionMode(const DriverContext& c)
       : cfg_(c.cfg),
-        config_(static_cast<const CorrosionConfig*>(c.cfg.mode_tables.count(keys.table)
-                                                        ? c.cfg.mode_tables.at(keys.table).get()
-                                                        : nullptr)),
+        config_(static_cast<const CorrosionConfig*>(
+            c.cfg.tables.count(keys.table) ? c.cfg.tables.at(keys.table).get() : nullptr)),
         model_(c.model),
         solver_(c.solver),
         specimen_(c.specimen) {}

@@ -100,9 +100,8 @@ bool viscous_joints(const io::ModelConfig& cfg) {
 
 // control = "creep": the servo holds sigma1 = confining_stress + deviatoric_stress for a duration
 // (s) or duration_days, at the creep step; the stage ends when its duration is up.
-std::shared_ptr<const loading::ModeSettings> CreepMode::read_stage(io::TomlSection& sec,
-                                                                   loading::Stage& st,
-                                                                   const io::ModelConfig& cfg) {
+std::shared_ptr<const loading::ExtensionSettings> CreepMode::read_stage(
+    io::TomlSection& sec, loading::Stage& st, const io::ModelConfig& cfg) {
   auto c = std::make_shared<CreepSettings>();
   st.control = loading::Control::axial_stress;
   st.target_stress =

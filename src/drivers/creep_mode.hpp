@@ -22,7 +22,7 @@ namespace vorodec::run {
 // A creep stage (an axial-stress stage that holds sigma1 - sigma3): the mechanical step is the
 // creep step, with density scaling sized to it (PFC's and UDEC's creep modes), and the run
 // watches for creep failure.
-struct CreepSettings final : loading::ModeSettings {
+struct CreepSettings final : loading::ExtensionSettings {
   // -, the largest creep step as a fraction of the contacts' shortest relaxation time (Ck/Kk or
   // Cm/Km); time_step > 0 (s) gives it directly instead.
   double step_factor = 1e-3;
@@ -85,9 +85,9 @@ class CreepControl {
 class CreepMode final : public StageMode {
  public:
   // The model-file keys of a creep stage (docs/model-file.md, "Creep stages").
-  static std::shared_ptr<const loading::ModeSettings> read_stage(io::TomlSection& sec,
-                                                                 loading::Stage& st,
-                                                                 const io::ModelConfig& cfg);
+  static std::shared_ptr<const loading::ExtensionSettings> read_stage(io::TomlSection& sec,
+                                                                      loading::Stage& st,
+                                                                      const io::ModelConfig& cfg);
   static constexpr io::StageModeKeys keys{"creep", nullptr, nullptr, read_stage};
 
   explicit CreepMode(const DriverContext& c) : cfg_(c.cfg), solver_(c.solver) {}

@@ -11,9 +11,11 @@ namespace vorodec::run {
 
 namespace {
 
+// A driver with a table of its own runs when the model file has it; one without (keys.table
+// nullptr) runs the [[stage]]s.
 struct DriverRow {
   const char* name;
-  bool (*asked_for)(const io::ModelConfig&);
+  io::DriverKeys keys;
   std::unique_ptr<Driver> (*make)(const DriverContext&);
 };
 
@@ -22,16 +24,21 @@ std::unique_ptr<Driver> make(const DriverContext& c) {
   return std::make_unique<D>(c);
 }
 
-// In order: the first row a model file asks for drives it; the last asks for every file.
+// The first row whose table the model file has drives it; the last drives every other file.
 constexpr std::array kDrivers{
-    DriverRow{"shpb", [](const io::ModelConfig& cfg) { return cfg.shpb.has_value(); },
-              make<ShpbDriver>},
-    DriverRow{"quasi_static", [](const io::ModelConfig&) { return true; }, make<QuasiStaticDriver>},
+    DriverRow{"shpb", ShpbDriver::keys, make<ShpbDriver>},
+    DriverRow{"quasi_static", {nullptr, nullptr}, make<QuasiStaticDriver>},
 };
+
+constexpr auto kDriverKeys = [] {
+  std::array<io::DriverKeys, kDrivers.size() - 1> keys{};
+  for (std::size_t i = 0; i + 1 < kDrivers.size(); ++i) keys[i] = kDrivers[i].keys;
+  return keys;
+}();
 
 const DriverRow& row_for(const io::ModelConfig& cfg) {
   for (const DriverRow& row : kDrivers)
-    if (row.asked_for(cfg)) return row;
+    if (row.keys.table && cfg.tables.count(row.keys.table)) return row;
   return kDrivers.back();
 }
 
@@ -47,7 +54,7 @@ std::string driver_name(const io::ModelConfig& cfg) {
 
 io::ModelConfig read_model_file(const std::filesystem::path& file,
                                 const std::vector<io::Override>& overrides) {
-  return io::read_model_file(file, overrides, stage_mode_keys());
+  return io::read_model_file(file, overrides, {stage_mode_keys(), kDriverKeys});
 }
 
 }  // namespace vorodec::run

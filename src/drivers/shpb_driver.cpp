@@ -17,8 +17,100 @@ static_assert(sizeof(ShpbDriver) == 1080, "ShpbDriver changed: see state()");
 
 using model::Group;
 
+namespace {
+
+// [shpb.incident_bar] or [shpb.transmitted_bar]; the transmitted bar takes `like`'s (the incident
+// bar's) diameter, E and density unless it gives its own.
+loading::BarProperties read_bar(io::TomlSection b, const loading::BarProperties* like,
+                                std::vector<double>& gauges) {
+  loading::BarProperties p;
+  p.length = b.positive("length", laws::required);
+  p.width = b.positive("diameter", like ? like->width : laws::required);
+  p.youngs_modulus = b.positive("E", like ? like->youngs_modulus : laws::required);
+  p.density = b.positive("density", like ? like->density : laws::required);
+  const std::string free_end = "free";
+  const std::string end = b.string("far_end", &free_end);
+  if (end != "free" && end != "quiet")
+    b.fail("far_end", "\"free\" or \"quiet\" (viscous, non-reflecting)");
+  p.quiet_far_end = end == "quiet";
+  gauges = b.numbers("gauges");
+  for (const double x : gauges)
+    if (!(x > 0 && x < p.length))
+      b.fail("gauges", fmt::format("a gauge at {} m is outside its bar (0, {} m) from the face", x,
+                                   p.length));
+  b.finish();
+  return p;
+}
+
+// bars = "blocks": the bars built from blocks of bar_block_length.
+void read_block_bars(io::TomlSection& sec, loading::ShpbConfig& s) {
+  s.bar_block_length = sec.positive("bar_block_length", 0.1 * s.incident.width);
+  if (!s.incident.quiet_far_end)
+    sec.sub("incident_bar")
+        .fail("far_end",
+              "with bars = \"blocks\" the striker's pulse enters through the incident "
+              "bar's far end, which absorbs what returns: far_end = \"quiet\"");
+  if (s.transmitted.length < 2.0 * s.bar_block_length)
+    sec.fail("bar_block_length",
+             fmt::format("{} m: each bar needs at least two blocks", s.bar_block_length));
+}
+
+// [shpb] with [shpb.incident_bar] and [shpb.transmitted_bar].
+loading::ShpbConfig read_shpb(io::TomlSection& sec) {
+  loading::ShpbConfig s;
+  s.incident = read_bar(sec.sub("incident_bar"), nullptr, s.incident_gauges);
+  s.transmitted = read_bar(sec.sub("transmitted_bar"), &s.incident, s.transmitted_gauges);
+  s.striker_length = sec.positive("striker_length", laws::required);
+  s.striker_velocity = sec.positive("striker_velocity", laws::required);
+  const double pulse = 2.0 * s.striker_length / s.incident.wave_speed();
+  if (2.0 * s.striker_length >= s.incident.length)
+    sec.fail("striker_length",
+             fmt::format("the pulse (2 x striker_length = {} m) is longer than the incident bar "
+                         "({} m): incident and reflected waves overlap everywhere on it",
+                         2.0 * s.striker_length, s.incident.length));
+  for (const double x : s.incident_gauges)
+    if (x < s.striker_length)
+      sec.fail("striker_length",
+               fmt::format("the incident gauge at {} m is closer to the face than half the "
+                           "pulse ({} m): its incident and reflected waves overlap",
+                           x, s.striker_length));
+  s.rise_time = sec.non_negative("rise_time", 0.0);
+  if (2.0 * s.rise_time > pulse)
+    sec.fail("rise_time", fmt::format("the rise and the fall ({} s each) take longer than the "
+                                      "pulse (2 x striker_length / c0 = {} s)",
+                                      s.rise_time, pulse));
+  const std::string exact = "exact";
+  const std::string bars = sec.string("bars", &exact);
+  if (bars != "exact" && bars != "blocks")
+    sec.fail("bars", "\"exact\" (1D elastic bars) or \"blocks\" (bars built from blocks)");
+  s.block_bars = bars == "blocks";
+  if (s.block_bars)
+    read_block_bars(sec, s);
+  else if (sec.has("bar_block_length"))
+    sec.fail("bar_block_length", "only with bars = \"blocks\"");
+  s.duration = sec.positive("duration", 2.0 * pulse);
+  s.record_interval = sec.positive("record_interval", pulse / 1000.0);
+  s.equilibrium_tolerance = sec.positive("equilibrium_tolerance", 0.05);
+  return s;
+}
+
+}  // namespace
+
+// [shpb]: no confinement, no density scaling, no quiet boundary (the bars are the boundaries).
+std::shared_ptr<const loading::ExtensionSettings> ShpbDriver::read_table(
+    io::TomlSection& sec, io::TomlSection& top, const io::ModelConfig& cfg) {
+  if (cfg.load_path.confining_stress > 0)
+    top.fail("loading", "a [shpb] test has no confinement: leave out confining_stress");
+  if (cfg.solver.time_step > 0)
+    io::TomlSection(*top.table()["solver"].as_table(), "solver", top.file())
+        .fail("time_step", "density scaling would change the inertia a [shpb] test measures");
+  if (top.has("quiet_boundary"))
+    top.fail("quiet_boundary", "a [shpb] test's bars are its boundaries: no quiet boundary");
+  return std::make_shared<loading::ShpbConfig>(read_shpb(sec));
+}
+
 ShpbDriver::ShpbDriver(const DriverContext& c)
-    : cfg_(*c.cfg.shpb),
+    : cfg_(*io::table_settings<loading::ShpbConfig>(c.cfg, keys.table)),
       model_(c.model),
       solver_(c.solver),
       boundary_(c.boundary),

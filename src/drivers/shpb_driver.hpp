@@ -17,6 +17,7 @@
 #include "vorodec/engine/driver.hpp"
 #include "vorodec/engine/good_state.hpp"
 #include "vorodec/input/model_file.hpp"
+#include "vorodec/input/toml_section.hpp"
 #include "vorodec/loading/boundary.hpp"
 #include "vorodec/loading/pressure_bar.hpp"
 #include "vorodec/loading/quiet_boundary.hpp"
@@ -25,6 +26,13 @@ namespace vorodec::run {
 
 class ShpbDriver final : public Driver {
  public:
+  // The model-file keys: [shpb] with its [shpb.incident_bar] and [shpb.transmitted_bar]
+  // (docs/model-file.md).
+  static std::shared_ptr<const loading::ExtensionSettings> read_table(io::TomlSection& sec,
+                                                                      io::TomlSection& top,
+                                                                      const io::ModelConfig& cfg);
+  static constexpr io::DriverKeys keys{"shpb", read_table};
+
   explicit ShpbDriver(const DriverContext& c);
   ~ShpbDriver() override { solver_.set_face_control({}); }
   ShpbDriver(const ShpbDriver&) = delete;
@@ -60,7 +68,7 @@ class ShpbDriver final : public Driver {
   void record_block_bars();  // after a step
   double face_time() const { return solver_.time() - shift_; }
 
-  const io::ShpbConfig& cfg_;
+  const loading::ShpbConfig& cfg_;
   model::Model& model_;
   solver::Solver& solver_;
   const loading::SpecimenBoundary& boundary_;

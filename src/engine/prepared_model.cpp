@@ -72,8 +72,8 @@ std::vector<double> block_densities(const io::GrainConfig& g, const geometry::Te
 // on springs per unit length k carries waves at sqrt(k h / rho) = c0) and jks = G / h with
 // G = E / 2, the shear modulus at Poisson's ratio 0 (rigid blocks have no Poisson effect; without
 // shear stiffness the column kinks sideways under a crushed specimen's push).
-void add_bar_laws(const io::ShpbConfig& b, std::vector<std::unique_ptr<laws::LawGroup>>& groups,
-                  solver::LawTable& table) {
+void add_bar_laws(const loading::ShpbConfig& b,
+                  std::vector<std::unique_ptr<laws::LawGroup>>& groups, solver::LawTable& table) {
   const auto spring = [&](double e) {
     laws::LawParams p;
     p["jkn"] = model::Distribution::constant(e / b.bar_block_length);
@@ -111,9 +111,11 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
   }
   const std::vector<double> density =
       cfg.grains ? block_densities(*cfg.grains, tess) : std::vector<double>{};
+  // A pressure-bar test's bars built from blocks are bodies of the model.
+  const auto* shpb = io::table_settings<loading::ShpbConfig>(cfg, "shpb");
   std::optional<model::BlockBars> bars;
-  if (cfg.shpb && cfg.shpb->block_bars) {
-    const io::ShpbConfig& b = *cfg.shpb;
+  if (shpb && shpb->block_bars) {
+    const loading::ShpbConfig& b = *shpb;
     const double h = b.bar_block_length;
     const auto blocks = [&](double length) {
       return std::max(2, static_cast<int>(std::lround(length / h)));
@@ -147,7 +149,7 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
     table.bond[static_cast<std::size_t>(p)][0] = cfg.platens_bonded;
     table.bond[0][static_cast<std::size_t>(p)] = cfg.platens_bonded;
   }
-  if (bars) add_bar_laws(*cfg.shpb, groups, table);
+  if (bars) add_bar_laws(*shpb, groups, table);
   solver::SolverSettings settings = cfg.solver;
   if (settings.contact_tolerance <= 0) settings.contact_tolerance = d;
   s.solver = std::make_unique<solver::Solver>(*s.model, std::move(groups), table, settings);

@@ -23,7 +23,7 @@ void merge_into(toml::table& base, toml::table&& over) {
 
 // A model file may start from another: `base = "file.toml"` (relative to it). Keys it sets win.
 toml::table load(const std::filesystem::path& file, int depth,
-                 std::vector<std::filesystem::path>& sources) {
+                 std::vector<std::filesystem::path>& sources, std::span<const DriverKeys> drivers) {
   toml::table t = parse_toml_file(file);
   sources.push_back(file);
   const toml::node* b = t.get("base");
@@ -37,17 +37,23 @@ toml::table load(const std::filesystem::path& file, int depth,
     throw ModelFileError(fmt::format(
         "{}:{}: key 'base': {}", file.string(), line,
         depth >= 8 ? "more than 8 nested base files" : "no such file: " + path.string()));
-  toml::table merged = load(path, depth + 1, sources);
+  toml::table merged = load(path, depth + 1, sources, drivers);
   t.erase("base");
-  // A load path replaces the base's: [shpb] its [[stage]]s, [[stage]]s its [shpb].
-  if (t.contains("shpb")) merged.erase("stage");
-  if (t.contains("stage")) merged.erase("shpb");
+  // A load path replaces the base's: a driver's table (such as [shpb]) drops the base's [[stage]]s
+  // and other drivers' tables, [[stage]]s drop its drivers' tables.
+  bool own_load_path = t.contains("stage");
+  for (const DriverKeys& d : drivers) own_load_path |= t.contains(d.table);
+  if (own_load_path) {
+    for (const DriverKeys& d : drivers)
+      if (!t.contains(d.table)) merged.erase(d.table);
+    if (!t.contains("stage")) merged.erase("stage");
+  }
   merge_into(merged, std::move(t));
   return merged;
 }
 
 // The tables in the order their keys are checked (sections.hpp says where each is read).
-void read_root(const toml::table& root, ModelConfig& cfg, std::span<const StageModeKeys> modes) {
+void read_root(const toml::table& root, ModelConfig& cfg, const ModelFileKeys& keys) {
   TomlSection top(root, "", cfg.file.string());
   const std::string empty;
   cfg.title = top.string("title", &empty);
@@ -60,11 +66,7 @@ void read_root(const toml::table& root, ModelConfig& cfg, std::span<const StageM
   read_contact_table(top, cfg);
   read_solver_table(top, cfg);
   read_loading_table(top, cfg);
-  read_mode_tables(top, cfg, modes);
-  if (top.has("shpb"))
-    read_shpb_table(top, cfg);
-  else
-    read_stage_tables(top, cfg, modes);
+  read_load_path(top, cfg, keys);
   read_quiet_boundary_table(top, cfg);
   read_output_table(top, cfg);
   top.finish();
@@ -74,14 +76,13 @@ void read_root(const toml::table& root, ModelConfig& cfg, std::span<const StageM
 }  // namespace
 
 ModelConfig read_model_file(const std::filesystem::path& file,
-                            const std::vector<Override>& overrides,
-                            std::span<const StageModeKeys> modes) {
+                            const std::vector<Override>& overrides, const ModelFileKeys& keys) {
   ModelConfig cfg;
   cfg.file = file;
-  toml::table root = load(file, 0, cfg.sources);
+  toml::table root = load(file, 0, cfg.sources, keys.drivers);
   for (const Override& o : overrides) apply_override(root, o, file.string());
   try {
-    read_root(root, cfg, modes);
+    read_root(root, cfg, keys);
   } catch (const ModelFileError& e) {
     for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {  // the last one set the value
       if (!concerns(e.key(), o->key)) continue;

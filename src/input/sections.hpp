@@ -43,12 +43,11 @@ TableReader read_specimen_table, read_blocks_table;
 TableReader read_joints_table, read_platens_table, read_contact_table;
 // solver_output_keys.cpp: [solver], [loading], [output].
 TableReader read_solver_table, read_loading_table, read_output_table;
-// stage_keys.cpp: the stage modes' own top-level tables (e.g. [corrosion]), then the [[stage]]
-// tables (a load path without [shpb]).
-void read_mode_tables(TomlSection& top, ModelConfig& cfg, std::span<const StageModeKeys> modes);
-void read_stage_tables(TomlSection& top, ModelConfig& cfg, std::span<const StageModeKeys> modes);
-// dynamics_keys.cpp: [shpb] (a load path instead of [[stage]]s) and [quiet_boundary].
-TableReader read_shpb_table, read_quiet_boundary_table;
+// stage_keys.cpp: the load path. The stage modes' own top-level tables (such as [corrosion]), then
+// a driver's table (such as [shpb]) or else the [[stage]] tables.
+void read_load_path(TomlSection& top, ModelConfig& cfg, const ModelFileKeys& keys);
+// dynamics_keys.cpp: [quiet_boundary].
+TableReader read_quiet_boundary_table;
 
 // lengths.cpp: the specimen's lengths against one another, once every table is read.
 void check_lengths(const toml::table& root, const ModelConfig& cfg);

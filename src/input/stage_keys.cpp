@@ -174,23 +174,31 @@ void read_stage(TomlSection sec, std::size_t index, std::vector<loading::Stage>&
 
 }  // namespace
 
-void read_mode_tables(TomlSection& top, ModelConfig& cfg, std::span<const StageModeKeys> modes) {
-  for (const StageModeKeys& m : modes)
+void read_load_path(TomlSection& top, ModelConfig& cfg, const ModelFileKeys& keys) {
+  for (const StageModeKeys& m : keys.modes)
     if (m.table && top.has(m.table)) {
       TomlSection table = top.sub(m.table);
-      cfg.mode_tables[m.table] = m.read_table(table, top, cfg);
+      cfg.tables[m.table] = m.read_table(table, top, cfg);
       table.finish();
     }
-}
-
-void read_stage_tables(TomlSection& top, ModelConfig& cfg, std::span<const StageModeKeys> modes) {
+  for (const DriverKeys& d : keys.drivers)
+    if (top.has(d.table)) {
+      if (top.has("stage"))
+        top.fail("stage", fmt::format("a [{}] test is its own load path: leave out the [[stage]] "
+                                      "tables",
+                                      d.table));
+      TomlSection table = top.sub(d.table);
+      cfg.tables[d.table] = d.read_table(table, top, cfg);
+      table.finish();
+      return;
+    }
   const toml::node* stages = top.node("stage");
   if (!stages || !stages->is_array_of_tables())
     top.fail("stage", "at least one [[stage]] table (or a [shpb] test) is required");
   const toml::array& list = *stages->as_array();
   for (std::size_t i = 0; i < list.size(); ++i)
     read_stage(TomlSection(*list[i].as_table(), fmt::format("stage[{}]", i), top.file()), i,
-               cfg.load_path.stages, cfg, modes);
+               cfg.load_path.stages, cfg, keys.modes);
 }
 
 }  // namespace vorodec::io

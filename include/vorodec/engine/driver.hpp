@@ -18,7 +18,7 @@ namespace vorodec::run {
 
 // A pressure-bar test's bars, for the outputs (outputs/shpb_output).
 struct BarsView {
-  const io::ShpbConfig& cfg;
+  const loading::ShpbConfig& cfg;
   // Pa, compression +: the stress in each bar at x m from its face (0: the face itself; else a
   // gauge's position) at t s, time 0 being the pulse's arrival at the specimen.
   std::function<double(double, double)> incident, transmitted;

@@ -71,25 +71,6 @@ struct QuietBoundaryConfig {
   bool input_shear = false;                 // along the side, not into it
 };
 
-// [shpb]: a split Hopkinson pressure bar test instead of [[stage]]s (loading/pressure_bar.hpp,
-// docs/theory.md §16): a striker hits the incident bar, whose face is the top platen; the
-// transmitted bar's face is the bottom platen. Time 0 is the pulse's arrival at the specimen.
-struct ShpbConfig {
-  loading::BarProperties incident, transmitted;
-  std::vector<double> incident_gauges, transmitted_gauges;  // m from the specimen face
-  double striker_length = 0;                                // m, of the incident bar's material
-  double striker_velocity = 0;                              // m/s
-  double rise_time = 0;        // s, the pulse's linear rise and fall (a pulse shaper); 0: none
-  double duration = 0;         // s of the specimen's loading; 0: twice the pulse's duration
-  double record_interval = 0;  // s between bars.csv rows; 0: the pulse's duration / 1000
-  double equilibrium_tolerance = 0.05;  // -, |eta| of "in equilibrium"
-  // Bars built from rectangular blocks of this length (m) with a bar contact law, instead of the
-  // exact 1D bars; the striker's pulse enters through the incident bar's far end; gauges at the
-  // joints nearest their positions.
-  bool block_bars = false;
-  double bar_block_length = 0;
-};
-
 struct OutputSettings {
   long history_steps = 200;       // steps between history rows
   long vtk_steps = 20000;         // steps between VTK frames (also at stage ends)
@@ -136,13 +117,12 @@ struct ModelConfig {
   };
   std::optional<JointMix> joint_mix;
   std::optional<GrainConfig> grains;  // grain-based specimen
-  // Top-level tables of the stage modes (e.g. [corrosion]), by table name: what each mode's reader
-  // made of it (StageModeKeys); only that mode reads it back.
-  std::map<std::string, std::shared_ptr<const loading::ModeSettings>, std::less<>> mode_tables;
+  // The top-level tables the stage modes and drivers read themselves ([corrosion], [shpb]), by
+  // name: what each one's reader made of it (StageModeKeys, DriverKeys).
+  std::map<std::string, std::shared_ptr<const loading::ExtensionSettings>, std::less<>> tables;
   std::optional<QuietBoundaryConfig> quiet_boundary;
-  std::optional<ShpbConfig> shpb;  // the load path is the bars' (no stages)
-  LawChoice platens;               // platen to specimen
-  bool platens_bonded = false;     // glued to the specimen (direct tension)
+  LawChoice platens;            // platen to specimen
+  bool platens_bonded = false;  // glued to the specimen (direct tension)
   solver::SolverSettings solver;
   long max_steps = 0;
   loading::LoadPath load_path;
@@ -151,25 +131,48 @@ struct ModelConfig {
 
 class TomlSection;
 
+// Reads a top-level table a stage mode or driver owns (called when the table is present, after
+// [loading]; `top` is the root). Returns what the mode or driver keeps of it in
+// ModelConfig::tables.
+using OwnTableReader = std::shared_ptr<const loading::ExtensionSettings> (*)(
+    TomlSection& table, TomlSection& top, const ModelConfig& cfg);
+
 // A stage mode's model-file keys, read by the mode's own code (src/drivers/<mode>_mode.cpp): the
 // [[stage]] tables with control = `control`, and the mode's top-level table if it has one.
 struct StageModeKeys {
   const char* control;
   const char* table;  // nullptr: none
-  // [table] (called when present, after [loading] and before the stages); `top` is the root.
-  std::shared_ptr<const loading::ModeSettings> (*read_table)(TomlSection& table, TomlSection& top,
-                                                             const ModelConfig& cfg);
-  // A stage's keys but name, control, ramp_time and implicit start: the mode sets the stage's
-  // control, target and end conditions, and returns its settings.
-  std::shared_ptr<const loading::ModeSettings> (*read_stage)(TomlSection& stage, loading::Stage& st,
-                                                             const ModelConfig& cfg);
+  OwnTableReader read_table;
+  // A stage's keys but name, control, ramp_time, the end_* keys and the implicit start: the mode
+  // sets the stage's control, target and own end conditions, and returns its settings.
+  std::shared_ptr<const loading::ExtensionSettings> (*read_stage)(TomlSection& stage,
+                                                                  loading::Stage& st,
+                                                                  const ModelConfig& cfg);
 };
 
+// A driver's model-file keys: its top-level table, a load path of its own instead of [[stage]]s.
+struct DriverKeys {
+  const char* table;
+  OwnTableReader read_table;
+};
+
+// The keys the stage modes and drivers read themselves (run::model_file_keys gives the registered
+// ones).
+struct ModelFileKeys {
+  std::span<const StageModeKeys> modes;
+  std::span<const DriverKeys> drivers;
+};
+
+// The settings a mode or driver read from its table `name`, nullptr if the file has none.
+template <class Settings>
+const Settings* table_settings(const ModelConfig& cfg, std::string_view name) {
+  const auto at = cfg.tables.find(name);
+  return at == cfg.tables.end() ? nullptr : static_cast<const Settings*>(at->second.get());
+}
+
 // Overrides are applied to the parsed file, so they are validated like the file's own keys; an
-// error about an override names its origin instead of the model file's line. `modes` are the stage
-// modes a stage may name (run::read_model_file passes the registered ones).
+// error about an override names its origin instead of the model file's line.
 ModelConfig read_model_file(const std::filesystem::path& file,
-                            const std::vector<Override>& overrides,
-                            std::span<const StageModeKeys> modes);
+                            const std::vector<Override>& overrides, const ModelFileKeys& keys);
 
 }  // namespace vorodec::io

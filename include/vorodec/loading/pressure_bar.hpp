@@ -7,6 +7,8 @@
 #include <functional>
 #include <vector>
 
+#include "vorodec/loading/load_path.hpp"
+
 namespace vorodec::loading {
 
 struct BarProperties {
@@ -68,5 +70,24 @@ class ElasticBar {
 // (a pulse shaper's ramp).
 std::function<double(double)> striker_pulse(const BarProperties& bar, double ls, double v,
                                             double t0, double rise = 0.0);
+
+// [shpb]: a split Hopkinson pressure bar test instead of [[stage]]s (docs/theory.md §16): a striker
+// hits the incident bar, whose face is the top platen; the transmitted bar's face is the bottom
+// platen. Time 0 is the pulse's arrival at the specimen.
+struct ShpbConfig final : ExtensionSettings {
+  loading::BarProperties incident, transmitted;
+  std::vector<double> incident_gauges, transmitted_gauges;  // m from the specimen face
+  double striker_length = 0;                                // m, of the incident bar's material
+  double striker_velocity = 0;                              // m/s
+  double rise_time = 0;        // s, the pulse's linear rise and fall (a pulse shaper); 0: none
+  double duration = 0;         // s of the specimen's loading; 0: twice the pulse's duration
+  double record_interval = 0;  // s between bars.csv rows; 0: the pulse's duration / 1000
+  double equilibrium_tolerance = 0.05;  // -, |eta| of "in equilibrium"
+  // Bars built from rectangular blocks of this length (m) with a bar contact law, instead of the
+  // exact 1D bars; the striker's pulse enters through the incident bar's far end; gauges at the
+  // joints nearest their positions.
+  bool block_bars = false;
+  double bar_block_length = 0;
+};
 
 }  // namespace vorodec::loading
