@@ -71,10 +71,19 @@ void add_deformable_block(Model& model, const std::vector<Point>& polygon, doubl
       z.gravity_mass[g] = z.mass[g];
     }
     z.zones.push_back(zone);
-    z.stress.push_back({});
-    z.strain.push_back({0.0, 0.0, 0.0});
+    ZoneArrays& za = z.arrays;
+    for (std::size_t k = 0; k < 3; ++k) {
+      za.gp[k].push_back(zone.gp[k]);
+      za.bx[k].push_back(zone.bx[k]);
+      za.by[k].push_back(zone.by[k]);
+      za.fx[k].push_back(0.0);
+      za.fy[k].push_back(0.0);
+    }
+    za.area.push_back(zone.area);
+    za.lambda.push_back(zone.lambda);
+    za.shear.push_back(zone.shear);
+    for (auto* v : {&z.sxx, &z.syy, &z.sxy, &z.szz, &z.exx, &z.eyy, &z.gxy}) v->push_back(0.0);
     z.zone_block.push_back(b);
-    z.zone_force.push_back({});
   }
   // Gridpoint -> zone corners of the new gridpoints (they only belong to the new zones).
   if (z.gp_zone_begin.empty()) z.gp_zone_begin.push_back(0);
@@ -93,6 +102,8 @@ void add_deformable_block(Model& model, const std::vector<Point>& polygon, doubl
   z.corner_gp.resize(bl.corner.size(), -1);
   for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c)
     z.corner_gp[c] = static_cast<std::int32_t>(base + mesh.boundary[c - bl.corner_begin[b]]);
+  z.arrays.ux.resize(z.gridpoints(), 0.0);
+  z.arrays.uy.resize(z.gridpoints(), 0.0);
   z.blocks.push_back(b);
   z.gp_begin.push_back(base);
   z.gp_end.push_back(static_cast<std::uint32_t>(z.gridpoints()));
@@ -150,48 +161,64 @@ void refresh_deformable(Model& model) {
 }
 
 void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
+  ZoneArrays& q = z.arrays;
+  const auto ng = static_cast<std::int64_t>(z.gridpoints());
+  for (std::int64_t gi = 0; gi < ng; ++gi) {
+    const auto g = static_cast<std::size_t>(gi);
+    q.ux[g] = z.x[g] - z.x0[g];
+    q.uy[g] = z.y[g] - z.y0[g];
+  }
   const auto nz = static_cast<std::int64_t>(z.zones.size());
-  const double *x = z.x.data(), *y = z.y.data(), *x0 = z.x0.data(), *y0 = z.y0.data();
-#pragma omp parallel for schedule(static) if (nz >= 2048)
+  const double *ux = q.ux.data(), *uy = q.uy.data();
+  const std::uint32_t *g0 = q.gp[0].data(), *g1 = q.gp[1].data(), *g2 = q.gp[2].data();
+  const double *bx0 = q.bx[0].data(), *bx1 = q.bx[1].data(), *bx2 = q.bx[2].data();
+  const double *by0 = q.by[0].data(), *by1 = q.by[1].data(), *by2 = q.by[2].data();
+  const double *area = q.area.data(), *lambda = q.lambda.data(), *shear = q.shear.data();
+  double *fx0 = q.fx[0].data(), *fx1 = q.fx[1].data(), *fx2 = q.fx[2].data();
+  double *fy0 = q.fy[0].data(), *fy1 = q.fy[1].data(), *fy2 = q.fy[2].data();
+  double *sxx = z.sxx.data(), *syy = z.syy.data(), *sxy = z.sxy.data(), *szz = z.szz.data();
+  double *exx_w = z.exx.data(), *eyy_w = z.eyy.data(), *gxy_w = z.gxy.data();
+  // Every zone on its own, the same arithmetic in the vector body and the remainder: the result
+  // does not depend on how the zones are split between threads.
+#pragma omp parallel for simd schedule(simd : static) if (nz >= 2048)
   for (std::int64_t i = 0; i < nz; ++i) {
-    const auto zi = static_cast<std::size_t>(i);
-    const Zone& q = z.zones[zi];
     // Deformation gradient F = [[a, b], [c, d]] = I + grad u over the initial zone.
-    double a = 1, b = 0, c = 0, d = 1;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::uint32_t g = q.gp[k];
-      const double ux = x[g] - x0[g], uy = y[g] - y0[g];
-      a += q.bx[k] * ux;
-      b += q.by[k] * ux;
-      c += q.bx[k] * uy;
-      d += q.by[k] * uy;
-    }
+    const double u0 = ux[g0[i]], u1 = ux[g1[i]], u2 = ux[g2[i]];
+    const double v0 = uy[g0[i]], v1 = uy[g1[i]], v2 = uy[g2[i]];
+    const double a = 1 + bx0[i] * u0 + bx1[i] * u1 + bx2[i] * u2;
+    const double b = by0[i] * u0 + by1[i] * u1 + by2[i] * u2;
+    const double c = bx0[i] * v0 + bx1[i] * v1 + bx2[i] * v2;
+    const double d = 1 + by0[i] * v0 + by1[i] * v1 + by2[i] * v2;
     // Polar decomposition F = R U (2D: R turns by atan2(c - b, a + d)); the strain U - I is
     // the zone's own, so a rigid rotation of any size leaves it stress-free.
     const double inv_r = 1.0 / std::sqrt((a + d) * (a + d) + (c - b) * (c - b));
     const double cs = (a + d) * inv_r, sn = (c - b) * inv_r;
     const double exx = cs * a + sn * c - 1.0, eyy = cs * d - sn * b - 1.0;
     const double exy = cs * b + sn * d;  // U is symmetric: the tensor shear strain
-    const double vol = q.lambda * (exx + eyy);
-    const double txx = vol + 2.0 * q.shear * exx, tyy = vol + 2.0 * q.shear * eyy;
-    const double txy = 2.0 * q.shear * exy;
+    const double vol = lambda[i] * (exx + eyy);
+    const double txx = vol + 2.0 * shear[i] * exx, tyy = vol + 2.0 * shear[i] * eyy;
+    const double txy = 2.0 * shear[i] * exy;
     // Nominal stress P = R T (T the Biot stress D (U - I)), the derivative of the zone's energy
     // A0 T:(U - I) / 2 by F: F^k = -A0 P . grad N_k.
     const double pxx = cs * txx - sn * txy, pxy = cs * txy - sn * tyy;
     const double pyx = sn * txx + cs * txy, pyy = sn * txy + cs * tyy;
-    auto& f = z.zone_force[zi];
-    for (std::size_t k = 0; k < 3; ++k) {
-      f[2 * k] = -q.area * (pxx * q.bx[k] + pxy * q.by[k]);
-      f[2 * k + 1] = -q.area * (pyx * q.bx[k] + pyy * q.by[k]);
-    }
+    const double A = area[i];
+    fx0[i] = -A * (pxx * bx0[i] + pxy * by0[i]);
+    fy0[i] = -A * (pyx * bx0[i] + pyy * by0[i]);
+    fx1[i] = -A * (pxx * bx1[i] + pxy * by1[i]);
+    fy1[i] = -A * (pyx * bx1[i] + pyy * by1[i]);
+    fx2[i] = -A * (pxx * bx2[i] + pxy * by2[i]);
+    fy2[i] = -A * (pyx * bx2[i] + pyy * by2[i]);
     // Stress and strain turned into the world frame: R T R^T and R (U - I) R^T.
     const double c2 = cs * cs, s2 = sn * sn, cssn = cs * sn;
-    z.stress[zi] = {c2 * txx - 2.0 * cssn * txy + s2 * tyy, s2 * txx + 2.0 * cssn * txy + c2 * tyy,
-                    cssn * (txx - tyy) + (c2 - s2) * txy, vol};
-    z.strain[zi] = {c2 * exx - 2.0 * cssn * exy + s2 * eyy, s2 * exx + 2.0 * cssn * exy + c2 * eyy,
-                    2.0 * (cssn * (exx - eyy) + (c2 - s2) * exy)};
+    sxx[i] = c2 * txx - 2.0 * cssn * txy + s2 * tyy;
+    syy[i] = s2 * txx + 2.0 * cssn * txy + c2 * tyy;
+    sxy[i] = cssn * (txx - tyy) + (c2 - s2) * txy;
+    szz[i] = vol;
+    exx_w[i] = c2 * exx - 2.0 * cssn * exy + s2 * eyy;
+    eyy_w[i] = s2 * exx + 2.0 * cssn * exy + c2 * eyy;
+    gxy_w[i] = 2.0 * (cssn * (exx - eyy) + (c2 - s2) * exy);
   }
-  const auto ng = static_cast<std::int64_t>(z.gridpoints());
   out_fx.resize(z.gridpoints());
   out_fy.resize(z.gridpoints());
 #pragma omp parallel for schedule(static) if (ng >= 2048)
@@ -200,9 +227,8 @@ void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& ou
     double fx = 0, fy = 0;
     for (std::uint32_t j = z.gp_zone_begin[g]; j < z.gp_zone_begin[g + 1]; ++j) {
       const std::uint32_t e = z.gp_zone[j];
-      const auto& f = z.zone_force[e >> 2];
-      fx += f[2 * (e & 3u)];
-      fy += f[2 * (e & 3u) + 1];
+      fx += q.fx[e & 3u][e >> 2];
+      fy += q.fy[e & 3u][e >> 2];
     }
     out_fx[g] = fx;
     out_fy[g] = fy;
@@ -232,9 +258,7 @@ std::vector<double> zone_stiffness_bound(const Zoning& z) {
 double zone_strain_energy(const Zoning& z) {
   double e = 0.0;
   for (std::size_t i = 0; i < z.zones.size(); ++i) {
-    const ZoneStress& s = z.stress[i];
-    const auto& eps = z.strain[i];
-    e += 0.5 * z.zones[i].area * (s.xx * eps[0] + s.yy * eps[1] + s.xy * eps[2]);
+    e += 0.5 * z.zones[i].area * (z.sxx[i] * z.exx[i] + z.syy[i] * z.eyy[i] + z.sxy[i] * z.gxy[i]);
   }
   return e;
 }
@@ -246,10 +270,10 @@ ZoneStress mean_stress(const Model& model, Group group) {
   for (std::size_t i = 0; i < z.zones.size(); ++i) {
     if (model.blocks.group[z.zone_block[i]] != group) continue;
     const double a = z.zones[i].area;
-    m.xx += a * z.stress[i].xx;
-    m.yy += a * z.stress[i].yy;
-    m.xy += a * z.stress[i].xy;
-    m.zz += a * z.stress[i].zz;
+    m.xx += a * z.sxx[i];
+    m.yy += a * z.syy[i];
+    m.xy += a * z.sxy[i];
+    m.zz += a * z.szz[i];
     area += a;
   }
   if (area > 0) m = {m.xx / area, m.yy / area, m.xy / area, m.zz / area};

@@ -16,7 +16,8 @@
 namespace vorodec::checkpoint {
 
 // 3: the quasi-static driver saves its stage modes in turn (each its state and reports).
-inline constexpr std::uint32_t kFormat = 3;
+// 4: zone stresses and strains saved as arrays by component; the zone-force scratch is not saved.
+inline constexpr std::uint32_t kFormat = 4;
 
 struct Header {
   std::string vorodec_version;

@@ -40,6 +40,16 @@ struct ZoneStress {
   double xx = 0, yy = 0, xy = 0, zz = 0;
 };
 
+// The zones' constants again in struct-of-arrays order, and the kernel's scratch, so that
+// zone_forces runs over several zones per instruction.
+struct ZoneArrays {
+  std::array<std::vector<std::uint32_t>, 3> gp;
+  std::array<std::vector<double>, 3> bx, by;
+  std::vector<double> area, lambda, shear;
+  std::vector<double> ux, uy;                 // m, per gridpoint: displacement this step
+  std::array<std::vector<double>, 3> fx, fy;  // N per m, per zone: force on each corner
+};
+
 struct Zoning {
   // Gridpoints (struct of arrays).
   std::vector<double> x, y, x0, y0, vx, vy;
@@ -49,20 +59,22 @@ struct Zoning {
   std::vector<double> cfx, cfy;          // N per m, contact force sums of the current step
   std::vector<std::uint32_t> block;      // owning block
   std::vector<std::uint8_t> prescribed;  // 1: velocity set from outside, not integrated
-  // Zones and their state.
+  // Zones and their state: stress (Pa) and strain (exx, eyy, gamma_xy engineering) by zone, in
+  // the world frame.
   std::vector<Zone> zones;
-  std::vector<ZoneStress> stress;
-  std::vector<std::array<double, 3>> strain;  // exx, eyy, gamma_xy (engineering)
+  ZoneArrays arrays;
+  std::vector<double> sxx, syy, sxy, szz, exx, eyy, gxy;
   std::vector<std::uint32_t> zone_block;
   // Gridpoint -> (zone << 2 | corner) in zone order, for a deterministic gather of zone forces.
   std::vector<std::uint32_t> gp_zone_begin, gp_zone;
-  std::vector<std::array<double, 6>> zone_force;  // per zone: (fx, fy) on each corner, scratch
   // Per block corner (Blocks::corner index): its gridpoint, or -1 on a rigid block.
   std::vector<std::int32_t> corner_gp;
   // Deformable blocks and the range of their gridpoints.
   std::vector<std::uint32_t> blocks, gp_begin, gp_end;
 
   std::size_t gridpoints() const { return x.size(); }
+  ZoneStress stress(std::size_t zone) const { return {sxx[zone], syy[zone], sxy[zone], szz[zone]}; }
+  std::array<double, 3> strain(std::size_t zone) const { return {exx[zone], eyy[zone], gxy[zone]}; }
   bool empty() const { return zones.empty(); }
 };
 
