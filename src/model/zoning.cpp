@@ -11,20 +11,67 @@ namespace vorodec::model {
 
 namespace {
 
-// Rounded-corner arc (docs/theory.md §5.2: tangent to both edges, radius d tan(beta/2) capped at 4d
-// as in model/build.cpp) from the unit directions u (to the previous corner) and w (to the next),
-// without trigonometry (this runs for every boundary gridpoint every step): tan(beta/2) = |u - w| /
-// |u + w|, and the centre lies at R / sin(beta/2) along the inward bisector, i.e. at
-// R perp(w - u) / (1 - u.w) with 1 - u.w = |u - w|^2 / 2. Boundary gridpoints along an edge form
-// straight (180 degree) corners: there |u + w| is round-off, so the radius takes the cap, where
-// |u x w| / (1 + u.w) (both round-off) gave any radius down to 0 and put the arc's centre on the
-// edge, and detection then chose a neighbour edge by chance (issue 26: a false gap, a crack at
-// 0.2 % of the peak).
-void round_gridpoint(Point u, Point c, Point w, double d, Point& centre, double& radius) {
-  const Point f = w - u, s = u + w;
-  const double a = std::sqrt(dot(f, f)), b = std::sqrt(dot(s, s));
-  radius = a >= 4.0 * b ? 4.0 * d : d * a / b;
-  centre = c + (radius / (0.5 * a * a)) * Point{-f.y, f.x};
+// The deformable blocks' world corners, unit edge directions (kept in the shape's inverse lengths)
+// and rounded arcs, from their gridpoints: the corners of all blocks at once, each loop over
+// independent corners so that it vectorises (the square roots and divisions dominate).
+void refresh_corners(Model& model) {
+  Blocks& bl = model.blocks;
+  Zoning& z = model.zoning;
+  CornerArrays& ca = z.corners;
+  const double d = model.rounding_length;
+  const auto n = static_cast<std::int64_t>(ca.corner.size());
+  const std::uint32_t *corner = ca.corner.data(), *next = ca.next.data(), *prev = ca.prev.data();
+  const std::int32_t* gp = z.corner_gp.data();
+  const double *x = z.x.data(), *y = z.y.data();
+  double *px = ca.px.data(), *py = ca.py.data(), *tx = ca.tx.data(), *ty = ca.ty.data();
+  double *inv = ca.inv.data(), *cx = ca.cx.data(), *cy = ca.cy.data(), *rad = ca.radius.data();
+#pragma omp parallel if (n >= 4096)
+  {
+#pragma omp for simd schedule(simd : static)
+    for (std::int64_t j = 0; j < n; ++j) {
+      px[j] = x[gp[corner[j]]];
+      py[j] = y[gp[corner[j]]];
+    }
+#pragma omp for simd schedule(simd : static)
+    for (std::int64_t j = 0; j < n; ++j) {
+      const double ex = px[next[j]] - px[j], ey = py[next[j]] - py[j];
+      inv[j] = 1.0 / std::sqrt(ex * ex + ey * ey);
+      tx[j] = inv[j] * ex;
+      ty[j] = inv[j] * ey;
+    }
+    // Each corner's rounded arc (docs/theory.md §5.2: tangent to both edges, radius d tan(beta/2)
+    // capped at 4d as in model/build.cpp) from the unit directions u (to the previous corner) and w
+    // (to the next), without trigonometry (this runs for every boundary gridpoint every step):
+    // tan(beta/2) = |u - w| / |u + w|, and the centre lies at R / sin(beta/2) along the inward
+    // bisector, i.e. at R perp(w - u) / (1 - u.w) with 1 - u.w = |u - w|^2 / 2. Boundary gridpoints
+    // along an edge form straight (180 degree) corners: there |u + w| is round-off, so the radius
+    // takes the cap, where |u x w| / (1 + u.w) (both round-off) gave any radius down to 0 and put
+    // the arc's centre on the edge, and detection then chose a neighbour edge by chance (issue 26:
+    // a false gap, a crack at 0.2 % of the peak).
+#pragma omp for simd schedule(simd : static)
+    for (std::int64_t j = 0; j < n; ++j) {
+      const double ux = -1.0 * tx[prev[j]], uy = -1.0 * ty[prev[j]];
+      const double fx = tx[j] - ux, fy = ty[j] - uy, sx = ux + tx[j], sy = uy + ty[j];
+      const double a = std::sqrt(fx * fx + fy * fy), b = std::sqrt(sx * sx + sy * sy);
+      const double r = a >= 4.0 * b ? 4.0 * d : d * a / b;
+      const double k = r / (0.5 * a * a);
+      rad[j] = r;
+      cx[j] = px[j] + k * -fy;
+      cy[j] = py[j] + k * fx;
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t j = 0; j < n; ++j) {
+      const std::uint32_t c = corner[j];
+      const Point t{tx[j], ty[j]}, p{px[j], py[j]};
+      const Point centre{cx[j], cy[j]}, centre_next{cx[next[j]], cy[next[j]]};
+      bl.world[c] = {p, centre};
+      CornerShape& s = bl.shape[c];
+      s.inv_length = inv[j];
+      s.radius = rad[j];
+      s.s0 = dot(centre - p, t);
+      s.s1 = dot(centre_next - p, t);
+    }
+  }
 }
 
 }  // namespace
@@ -100,8 +147,17 @@ void add_deformable_block(Model& model, const std::vector<Point>& polygon, doubl
     for (std::uint32_t k = 0; k < 3; ++k) z.gp_zone[fill[z.zones[i].gp[k] - base]++] = i << 2 | k;
 
   z.corner_gp.resize(bl.corner.size(), -1);
-  for (std::uint32_t c = bl.corner_begin[b]; c < bl.corner_begin[b + 1]; ++c)
-    z.corner_gp[c] = static_cast<std::int32_t>(base + mesh.boundary[c - bl.corner_begin[b]]);
+  CornerArrays& ca = z.corners;
+  const auto first = static_cast<std::uint32_t>(ca.corner.size());
+  const std::uint32_t c0 = bl.corner_begin[b], n = bl.corner_begin[b + 1] - c0;
+  for (std::uint32_t c = c0; c < c0 + n; ++c) {
+    z.corner_gp[c] = static_cast<std::int32_t>(base + mesh.boundary[c - c0]);
+    ca.corner.push_back(c);
+    ca.next.push_back(first + (bl.shape[c].next - c0));
+    ca.prev.push_back(first + (c == c0 ? n - 1 : c - 1 - c0));
+  }
+  for (auto* v : {&ca.px, &ca.py, &ca.tx, &ca.ty, &ca.inv, &ca.cx, &ca.cy, &ca.radius})
+    v->resize(ca.corner.size(), 0.0);
   z.arrays.ux.resize(z.gridpoints(), 0.0);
   z.arrays.uy.resize(z.gridpoints(), 0.0);
   z.blocks.push_back(b);
@@ -113,7 +169,6 @@ void add_deformable_block(Model& model, const std::vector<Point>& polygon, doubl
 void refresh_deformable(Model& model) {
   Blocks& bl = model.blocks;
   Zoning& z = model.zoning;
-  const double d = model.rounding_length;
   const auto nd = static_cast<std::int64_t>(z.blocks.size());
   // Small models stay on one thread: a parallel region costs more than their work.
 #pragma omp parallel for schedule(static) if (nd >= 64)
@@ -133,31 +188,8 @@ void refresh_deformable(Model& model) {
     bl.vx[b] = mu / m;
     bl.vy[b] = mv / m;
     bl.kin[b] = {bl.x[b], bl.y[b], bl.vx[b], bl.vy[b], 0.0};
-    const std::uint32_t c0 = bl.corner_begin[b], c1 = bl.corner_begin[b + 1];
-    for (std::uint32_t c = c0; c < c1; ++c) {
-      const auto g = static_cast<std::size_t>(z.corner_gp[c]);
-      bl.world[c].corner = {z.x[g], z.y[g]};
-    }
-    // Unit edge directions, kept in the shape's inverse lengths and reused by the corners.
-    thread_local std::vector<Point> tangent;
-    tangent.resize(c1 - c0);
-    for (std::uint32_t c = c0; c < c1; ++c) {
-      const Point e = bl.world[bl.shape[c].next].corner - bl.world[c].corner;
-      const double inv = 1.0 / std::sqrt(dot(e, e));
-      bl.shape[c].inv_length = inv;
-      tangent[c - c0] = inv * e;
-    }
-    for (std::uint32_t c = c0; c < c1; ++c) {
-      const Point t_in = tangent[(c == c0 ? c1 : c) - 1 - c0], t_out = tangent[c - c0];
-      round_gridpoint(-1.0 * t_in, bl.world[c].corner, t_out, d, bl.world[c].centre,
-                      bl.shape[c].radius);
-    }
-    for (std::uint32_t c = c0; c < c1; ++c) {
-      const Point t = tangent[c - c0], p = bl.world[c].corner;
-      bl.shape[c].s0 = dot(bl.world[c].centre - p, t);
-      bl.shape[c].s1 = dot(bl.world[bl.shape[c].next].centre - p, t);
-    }
   }
+  refresh_corners(model);
 }
 
 void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {

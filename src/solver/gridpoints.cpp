@@ -52,29 +52,39 @@ void Solver::integrate_gridpoints() {
   const auto ng = static_cast<std::int64_t>(z.gridpoints());
   const double alpha = settings_.local_damping, dt = dt_;
   const model::Point g = settings_.gravity;
+  for (auto* w : {&work_boundary_, &work_body_, &work_damping_}) w->resize(z.gridpoints());
+  double *x = z.x.data(), *y = z.y.data(), *vx = z.vx.data(), *vy = z.vy.data();
+  const double *zfx = zfx_.data(), *zfy = zfy_.data(), *cfx = z.cfx.data(), *cfy = z.cfy.data();
+  const double *bfx = z.fx.data(), *bfy = z.fy.data(), *mass = z.mass.data();
+  const double* gravity_mass = z.gravity_mass.data();
+  const std::uint8_t* prescribed = z.prescribed.data();
+  double *wb = work_boundary_.data(), *wg = work_body_.data(), *wd = work_damping_.data();
+  // Each gridpoint on its own (the vector body and the remainder do the same arithmetic); its work
+  // is summed below, in gridpoint order, whatever the threads.
+#pragma omp parallel for simd schedule(simd : static) if (ng >= 2048)
+  for (std::int64_t i = 0; i < ng; ++i) {
+    const double u0 = vx[i], v0 = vy[i];
+    const double fx = zfx[i] + cfx[i] + bfx[i] + gravity_mass[i] * g.x;
+    const double fy = zfy[i] + cfy[i] + bfy[i] + gravity_mass[i] * g.y;
+    const double dfx = -alpha * std::abs(fx) * sign(u0);
+    const double dfy = -alpha * std::abs(fy) * sign(v0);
+    const bool free = !prescribed[i];
+    const double u = free ? u0 + (fx + dfx) / mass[i] * dt : u0;
+    const double v = free ? v0 + (fy + dfy) / mass[i] * dt : v0;
+    vx[i] = u;
+    vy[i] = v;
+    wb[i] = free ? (bfx[i] * u + bfy[i] * v) * dt
+                 : -(((zfx[i] + cfx[i]) * u + (zfy[i] + cfy[i]) * v) * dt);
+    wg[i] = free ? gravity_mass[i] * (g.x * u + g.y * v) * dt : 0.0;
+    wd[i] = free ? -((dfx * (u0 + u) + dfy * (v0 + v)) * 0.5 * dt) : 0.0;  // as integrate_blocks
+    x[i] += u * dt;
+    y[i] += v * dt;
+  }
   double w_boundary = 0, w_body = 0, w_damp = 0;
-#pragma omp parallel for schedule(static) if (ng >= 2048) reduction(+ : w_boundary, w_body, w_damp)
-  for (std::int64_t gi = 0; gi < ng; ++gi) {
-    const auto i = static_cast<std::size_t>(gi);
-    double u = z.vx[i], v = z.vy[i];
-    if (z.prescribed[i]) {
-      w_boundary -= ((zfx_[i] + z.cfx[i]) * u + (zfy_[i] + z.cfy[i]) * v) * dt;
-    } else {
-      const double fx = zfx_[i] + z.cfx[i] + z.fx[i] + z.gravity_mass[i] * g.x;
-      const double fy = zfy_[i] + z.cfy[i] + z.fy[i] + z.gravity_mass[i] * g.y;
-      const double dfx = -alpha * std::abs(fx) * sign(u);
-      const double dfy = -alpha * std::abs(fy) * sign(v);
-      const double u0 = u, v0 = v;
-      u += (fx + dfx) / z.mass[i] * dt;
-      v += (fy + dfy) / z.mass[i] * dt;
-      z.vx[i] = u;
-      z.vy[i] = v;
-      w_damp -= (dfx * (u0 + u) + dfy * (v0 + v)) * 0.5 * dt;  // as integrate_blocks
-      w_boundary += (z.fx[i] * u + z.fy[i] * v) * dt;
-      w_body += z.gravity_mass[i] * (g.x * u + g.y * v) * dt;
-    }
-    z.x[i] += u * dt;
-    z.y[i] += v * dt;
+  for (std::size_t i = 0; i < z.gridpoints(); ++i) {
+    w_boundary += wb[i];
+    w_body += wg[i];
+    w_damp += wd[i];
   }
   energy_.boundary_work += w_boundary;
   energy_.body_work += w_body;

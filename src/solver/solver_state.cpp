@@ -6,8 +6,8 @@ namespace vorodec::solver {
 
 // A member added to Solver is either state a checkpoint carries (save and load it in Solver::state)
 // or comes again from the model file or the loaded state (say so there); then update these sizes.
-// face_control_ is the driver's, set again when it is made.
-static_assert(sizeof(Solver) == 904, "Solver changed: see Solver::state");
+// face_control_ is the driver's, set again when it is made; the gridpoints' work_* are scratch.
+static_assert(sizeof(Solver) == 976, "Solver changed: see Solver::state");
 
 template <class Archive>
 void Solver::state(Archive& ar) {

@@ -50,6 +50,19 @@ struct ZoneArrays {
   std::array<std::vector<double>, 3> fx, fy;  // N per m, per zone: force on each corner
 };
 
+// The boundary gridpoints of the deformable blocks as corners, all blocks in one list (block
+// order), so that their world corners, edges and rounded arcs are refreshed several per
+// instruction: the corner index, the list positions of its block's next and previous corner, and
+// the refresh's scratch.
+struct CornerArrays {
+  std::vector<std::uint32_t> corner, next, prev;
+  std::vector<double> px, py;  // m, corner
+  std::vector<double> tx, ty;  // -, unit direction of the edge from the corner
+  std::vector<double> inv;     // 1/m, of the edge's length
+  std::vector<double> cx, cy;  // m, arc centre
+  std::vector<double> radius;  // m
+};
+
 struct Zoning {
   // Gridpoints (struct of arrays).
   std::vector<double> x, y, x0, y0, vx, vy;
@@ -69,6 +82,7 @@ struct Zoning {
   std::vector<std::uint32_t> gp_zone_begin, gp_zone;
   // Per block corner (Blocks::corner index): its gridpoint, or -1 on a rigid block.
   std::vector<std::int32_t> corner_gp;
+  CornerArrays corners;
   // Deformable blocks and the range of their gridpoints.
   std::vector<std::uint32_t> blocks, gp_begin, gp_end;
 

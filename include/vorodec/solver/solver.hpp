@@ -131,6 +131,9 @@ class Solver {
   std::vector<std::size_t> law_begin_;
   std::vector<std::size_t> deformable_begin_;  // per law: its contacts touching deformable blocks
   std::vector<double> zfx_, zfy_;              // zone forces per gridpoint, N per m
+  // J per m, each gridpoint's share of this step's boundary, body and damping work (scratch),
+  // summed after the vectorised update in gridpoint order.
+  std::vector<double> work_boundary_, work_body_, work_damping_;
   ContactDetector detector_;
   SolverSettings settings_;
   std::vector<model::ContactForce> forces_;
