@@ -68,15 +68,20 @@ void Solver::integrate_gridpoints() {
     const double fy = zfy[i] + cfy[i] + bfy[i] + gravity_mass[i] * g.y;
     const double dfx = -alpha * std::abs(fx) * sign(u0);
     const double dfy = -alpha * std::abs(fy) * sign(v0);
+    // Both branches computed, one kept: a branch would stop the loop from vectorising.
     const bool free = !prescribed[i];
-    const double u = free ? u0 + (fx + dfx) / mass[i] * dt : u0;
-    const double v = free ? v0 + (fy + dfy) / mass[i] * dt : v0;
+    const double u_free = u0 + (fx + dfx) / mass[i] * dt, v_free = v0 + (fy + dfy) / mass[i] * dt;
+    const double u = free ? u_free : u0, v = free ? v_free : v0;
     vx[i] = u;
     vy[i] = v;
-    wb[i] = free ? (bfx[i] * u + bfy[i] * v) * dt
-                 : -(((zfx[i] + cfx[i]) * u + (zfy[i] + cfy[i]) * v) * dt);
-    wg[i] = free ? gravity_mass[i] * (g.x * u + g.y * v) * dt : 0.0;
-    wd[i] = free ? -((dfx * (u0 + u) + dfy * (v0 + v)) * 0.5 * dt) : 0.0;  // as integrate_blocks
+    const double w_applied = (bfx[i] * u + bfy[i] * v) * dt;
+    const double w_held = -(((zfx[i] + cfx[i]) * u + (zfy[i] + cfy[i]) * v) * dt);
+    const double w_gravity = gravity_mass[i] * (g.x * u + g.y * v) * dt;
+    const double w_damping =
+        -((dfx * (u0 + u) + dfy * (v0 + v)) * 0.5 * dt);  // as integrate_blocks
+    wb[i] = free ? w_applied : w_held;
+    wg[i] = free ? w_gravity : 0.0;
+    wd[i] = free ? w_damping : 0.0;
     x[i] += u * dt;
     y[i] += v * dt;
   }
