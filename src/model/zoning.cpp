@@ -195,10 +195,12 @@ void refresh_deformable(Model& model) {
 void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
   ZoneArrays& q = z.arrays;
   const auto ng = static_cast<std::int64_t>(z.gridpoints());
-  for (std::int64_t gi = 0; gi < ng; ++gi) {
-    const auto g = static_cast<std::size_t>(gi);
-    q.ux[g] = z.x[g] - z.x0[g];
-    q.uy[g] = z.y[g] - z.y0[g];
+  const double *x = z.x.data(), *y = z.y.data(), *x0 = z.x0.data(), *y0 = z.y0.data();
+  double *ux_w = q.ux.data(), *uy_w = q.uy.data();
+#pragma omp parallel for simd schedule(simd : static) if (ng >= 2048)
+  for (std::int64_t g = 0; g < ng; ++g) {
+    ux_w[g] = x[g] - x0[g];
+    uy_w[g] = y[g] - y0[g];
   }
   const auto nz = static_cast<std::int64_t>(z.zones.size());
   const double *ux = q.ux.data(), *uy = q.uy.data();
