@@ -111,9 +111,11 @@ std::vector<fs::path> model_file_reader() {
 TEST(ModelFileReference, EveryKeyTheReadersAskForIsDocumented) {
   EXPECT_TRUE(documents(source / "docs/model-file.md", model_file_reader()));
   EXPECT_TRUE(documents(source / "docs/workflows.md", {source / "src/workflows/batch_file.cpp",
+                                                       source / "src/workflows/plan_keys.hpp",
                                                        source / "src/input/override.cpp"}));
-  EXPECT_TRUE(
-      documents(source / "docs/workflows.md", {source / "src/workflows/calibration_file.cpp"}));
+  EXPECT_TRUE(documents(
+      source / "docs/workflows.md",
+      {source / "src/workflows/calibration_file.cpp", source / "src/workflows/plan_keys.hpp"}));
 }
 
 TEST(ModelFileReference, LawTablesAreTheLawsOwnParameterSpecs) {

@@ -69,12 +69,7 @@ std::string row(const BatchPlan& plan, std::size_t i, const CaseOutcome& o, cons
 int run_batch(const BatchOptions& options) {
   Cluster cluster;
   const bool lead = cluster.rank() == 0;
-  if (cluster.launched_without_mpi()) {
-    fmt::print(stderr,
-               "error: started as several MPI ranks, but this vorodec was built without MPI "
-               "(cmake -DVORODEC_MPI=ON with libopenmpi-dev installed)\n");
-    return bad_input;
-  }
+  if (cluster.refuse_without_mpi()) return bad_input;
   BatchPlan plan;
   try {
     plan = read_batch_file(options.batch_file);

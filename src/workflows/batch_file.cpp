@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "plan_keys.hpp"
 #include "vorodec/input/override.hpp"
 #include "vorodec/input/toml_section.hpp"
 
@@ -134,11 +135,7 @@ BatchPlan read_batch_file(const std::filesystem::path& file) {
   BatchPlan plan;
   plan.file = file;
   TomlSection top(root, "", name);
-  const std::string empty;
-  plan.title = top.string("title", &empty);
-  const std::string default_out = (std::filesystem::path("results") / file.stem()).string();
-  plan.output = top.string("output", &default_out);
-  if (plan.output.empty()) top.fail("output", "must name a folder");
+  read_title_and_output(top, file, plan.title, plan.output);
   const std::vector<BatchCase> bases = read_cases(top, file);
   const std::vector<GridAxis> grid = read_grid(top);
   top.finish();

@@ -543,11 +543,7 @@ int Calibration::run() {
 int calibrate(const CalibrateOptions& options) {
   Cluster cluster;
   const bool lead = cluster.rank() == 0;
-  if (cluster.launched_without_mpi()) {
-    fmt::print(stderr,
-               "error: started as several MPI ranks, but this vorodec was built without MPI\n");
-    return bad_input;
-  }
+  if (cluster.refuse_without_mpi()) return bad_input;
   CalibrationPlan plan;
   try {
     plan = read_calibration_file(options.file);

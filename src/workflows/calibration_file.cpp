@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "plan_keys.hpp"
 #include "vorodec/drivers/registry.hpp"
 #include "vorodec/input/override.hpp"
 #include "vorodec/input/toml_section.hpp"
@@ -337,11 +338,7 @@ CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
   CalibrationPlan plan;
   plan.file = file.lexically_normal();  // the same file however it is spelled
   TomlSection top(root, "", name);
-  const std::string empty;
-  plan.title = top.string("title", &empty);
-  const std::string default_out = (std::filesystem::path("results") / file.stem()).string();
-  plan.output = top.string("output", &default_out);
-  if (plan.output.empty()) top.fail("output", "must name a folder");
+  read_title_and_output(top, file, plan.title, plan.output);
   plan.seeds = read_seeds(top);
   plan.step = top.number("step", 0.1);
   if (!(plan.step > 0 && plan.step < 1))

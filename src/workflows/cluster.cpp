@@ -1,5 +1,7 @@
 #include "cluster.hpp"
 
+#include <fmt/format.h>
+
 #include <cstdlib>
 
 #ifdef VORODEC_WITH_MPI
@@ -102,5 +104,13 @@ void Cluster::abort(int code) const {
 }
 
 #endif
+
+bool Cluster::refuse_without_mpi() const {
+  if (unsupported_)
+    fmt::print(stderr,
+               "error: started as several MPI ranks, but this vorodec was built without MPI "
+               "(cmake -DVORODEC_MPI=ON with libopenmpi-dev installed)\n");
+  return unsupported_;
+}
 
 }  // namespace vorodec::workflows

@@ -15,9 +15,9 @@ class Cluster {
 
   int rank() const { return rank_; }
   int size() const { return size_; }
-  // Launched by mpirun/srun with several ranks, but built without MPI: every rank would run
-  // every case.
-  bool launched_without_mpi() const { return unsupported_; }
+  // Launched by mpirun/srun with several ranks, but built without MPI (every rank would run
+  // every case): says so on stderr, with how to build with MPI, and returns true.
+  bool refuse_without_mpi() const;
   // Rank 0 receives every rank's text, in rank order; the other ranks receive nothing.
   std::vector<std::string> gather(const std::string& mine) const;
   // Every rank receives every rank's text, in rank order.
