@@ -13,6 +13,8 @@ packages=(
   # Calibration: NLopt's derivative-free optimisers (BOBYQA).
   libnlopt-cxx-dev
   libvtk9-dev python3-vtk9 python3-matplotlib python3-numpy
+  # The Python module (python/): pybind11 and the headers of Debian's /usr/bin/python3.
+  pybind11-dev python3-dev
   # MPI for `vorodec batch` across machines (mpirun; optional at build time, used by the tests).
   libopenmpi-dev openmpi-bin
   xvfb xauth

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "run_support.hpp"
+#include "vorodec/workflows/calibration_file.hpp"
 
 using vorodec::testing::json_number;
 using vorodec::testing::out_dir;
@@ -204,6 +205,28 @@ TEST(Calibrate, TargetNoTestProducesExitsTwoNamingTheTarget) {
   EXPECT_NE(o.output.find("tensile_strength_Pa"), std::string::npos) << o.output;
 }
 
+TEST(CalibrationTargets, ReadAHistoryColumnAtACrossingOrAStageAndASummaryNumberByItsPath) {
+  using vorodec::workflows::run_quantity;
+  using vorodec::workflows::RunQuantity;
+  const fs::path dir = out_dir("calibrate_quantities");
+  write(dir, "history.csv",
+        "step,time,axial_strain,axial_stress,stage\n0,0,0,0,load:start\n10,1,0.001,2e7,load\n"
+        "20,2,0.003,6e7,load\n30,3,0.004,5e7,load:end\n");
+  write(dir, "summary.json",
+        R"({"acoustic_emission": {"b_value": 1.5},)"
+        R"( "corrosion_stages": [{"failure_time_s": 1}, {"failure_time_s": 7}]})");
+  // Between the rows at strains 0.001 and 0.003: interpolated.
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_stress", true, "axial_strain", 0.002}), 4e7);
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_strain", true, "time", 0.0}), 0.0);
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_stress", true, "stage", 0, "load:end"}), 5e7);
+  EXPECT_TRUE(std::isnan(run_quantity(dir, {"axial_stress", true, "time", 9.0})));  // never
+  EXPECT_TRUE(std::isnan(run_quantity(dir, {"axial_stres", true, "time", 1.0})));
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"acoustic_emission.b_value"}), 1.5);
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"corrosion_stages.1.failure_time_s"}), 7.0);
+  EXPECT_TRUE(std::isnan(run_quantity(dir, {"corrosion_stages.x.failure_time_s"})));
+  EXPECT_TRUE(std::isnan(run_quantity(dir, {"peak_stress_Pa"})));
+}
+
 // Each bad file: texts replaced in a good calibration, and what the message must name.
 struct BadCalibration {
   std::string from, to, expected, from2 = "", to2 = "";
@@ -239,6 +262,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadCalibration{"quantity = \"peak_stress_Pa\"", "quantity = \"peak_strength\"",
                        "key 'target[1].quantity': 'peak_strength' is not produced by any test"},
         BadCalibration{"seeds = [11, 12]", "seeds = []", "bad.toml:2: key 'seeds'"},
+        BadCalibration{"quantity = \"peak_stress_Pa\"", "quantity = \"history.axial_stress\"",
+                       "key 'target[1].at': a history quantity needs `at`"},
+        BadCalibration{"quantity = \"peak_stress_Pa\"",
+                       "quantity = \"peak_stress_Pa\"\nat = { time = 1.0 }",
+                       "key 'target[1].at': only a history.<column> quantity"},
+        BadCalibration{"quantity = \"peak_stress_Pa\"",
+                       "quantity = \"history.axial_stress\"\nat = { time = 1.0, stage = \"a\" }",
+                       "key 'target[1].at': give one column"},
         BadCalibration{"test = \"ucs\"\nquantity = \"youngs",
                        "test = \"ucss\"\nquantity = \"youngs",
                        "key 'target[0].test': no [[test]] is named 'ucss'"},

@@ -55,19 +55,7 @@ std::vector<io::Override> parse_sets(const std::vector<std::string>& sets) {
 }
 
 void print_report(const geometry::Tessellation& t, const io::ModelConfig& cfg) {
-  if (cfg.specimen_file) fmt::print("specimen loaded from {}\n", cfg.specimen_file->string());
-  fmt::print("{}", geometry::format_report(t.report));
-  if (cfg.grains) {
-    double total = 0;
-    for (const double a : t.mineral_area) total += a;
-    fmt::print(
-        "  grains: {}, {} sub-blocks ({})\n", t.grain_mineral.size(), t.blocks.size(),
-        cfg.grains->settings.sub_blocks == geometry::SubBlocks::trigon ? "trigon" : "voronoi");
-    for (std::size_t m = 0; m < cfg.grains->minerals.size(); ++m)
-      fmt::print("  mineral {}: area fraction {:.4f} (requested {:.4f})\n",
-                 cfg.grains->minerals[m].name, t.mineral_area[m] / total,
-                 cfg.grains->minerals[m].fraction);
-  }
+  fmt::print("{}", run::specimen_report(cfg, t));
   for (const auto& w : t.report.warnings) fmt::print(stderr, "warning: specimen: {}\n", w);
 }
 
@@ -177,14 +165,7 @@ void add_workflow_commands(CLI::App& cli, Options& o, Commands& c) {
 // run, check, build: the model file read, its specimen made, then the command's own part.
 int model_command(const Options& o, const Commands& c) {
   const io::ModelConfig cfg = run::read_model_file(o.model_path, parse_sets(o.sets));
-  geometry::Tessellation specimen;
-  try {
-    specimen = run::make_specimen(cfg);
-  } catch (const geometry::GeometryError& e) {
-    fmt::print(stderr, "error: {}:{}: [specimen]: impossible geometry: {}\n", o.model_path,
-               cfg.specimen_line, e.what());
-    return bad_input;
-  }
+  const geometry::Tessellation specimen = run::make_specimen(cfg);
   const fs::path out =
       o.out_dir.empty() ? fs::path("results") / fs::path(o.model_path).stem() : fs::path(o.out_dir);
   if (c.check->parsed()) {
@@ -202,7 +183,7 @@ int model_command(const Options& o, const Commands& c) {
     fmt::print("specimen written to {}\n", (out / "specimen.vsp").string());
     return 0;
   }
-  const run::RunOptions options{out, o.max_steps, !o.no_vtk, true, o.stop_at_step};
+  const run::RunOptions options{out, o.max_steps, !o.no_vtk, true, o.stop_at_step, {}};
   const run::RunSummary s = run::run_model(cfg, specimen, options, parse_sets(o.sets));
   print_outcome(o.model_path, s, out);
   return s.exit_code;

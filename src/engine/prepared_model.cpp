@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "vorodec/geometry/grains.hpp"
+#include "vorodec/io/input_error.hpp"
 #include "vorodec/io/specimen_file.hpp"
 #include "vorodec/model/build.hpp"
 #include "vorodec/solver/solver.hpp"
@@ -15,8 +16,32 @@ using model::Group;
 
 geometry::Tessellation make_specimen(const io::ModelConfig& cfg) {
   if (cfg.specimen_file) return io::read_specimen(*cfg.specimen_file);
-  if (cfg.grains) return geometry::tessellate_grains(cfg.tessellation, cfg.grains->settings);
-  return geometry::tessellate(cfg.tessellation);
+  try {
+    if (cfg.grains) return geometry::tessellate_grains(cfg.tessellation, cfg.grains->settings);
+    return geometry::tessellate(cfg.tessellation);
+  } catch (const geometry::GeometryError& e) {
+    throw io::ModelFileError(fmt::format("{}:{}: [specimen]: impossible geometry: {}",
+                                         cfg.file.string(), cfg.specimen_line, e.what()));
+  }
+}
+
+std::string specimen_report(const io::ModelConfig& cfg, const geometry::Tessellation& t) {
+  std::string text;
+  if (cfg.specimen_file)
+    text += fmt::format("specimen loaded from {}\n", cfg.specimen_file->string());
+  text += geometry::format_report(t.report);
+  if (cfg.grains) {
+    double total = 0;
+    for (const double a : t.mineral_area) total += a;
+    text += fmt::format(
+        "  grains: {}, {} sub-blocks ({})\n", t.grain_mineral.size(), t.blocks.size(),
+        cfg.grains->settings.sub_blocks == geometry::SubBlocks::trigon ? "trigon" : "voronoi");
+    for (std::size_t m = 0; m < cfg.grains->minerals.size(); ++m)
+      text += fmt::format("  mineral {}: area fraction {:.4f} (requested {:.4f})\n",
+                          cfg.grains->minerals[m].name, t.mineral_area[m] / total,
+                          cfg.grains->minerals[m].fraction);
+  }
+  return text;
 }
 
 namespace {

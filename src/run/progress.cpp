@@ -8,14 +8,17 @@
 
 namespace vorodec::run {
 
-Progress::Progress(bool enabled)
+Progress::Progress(bool enabled, std::function<void(const ProgressReport&)> callback)
     : enabled_(enabled),
       tty_(isatty(STDERR_FILENO) != 0),
+      callback_(std::move(callback)),
       start_(Clock::now()),
       last_(start_),
       stage_start_(start_) {}
 
 void Progress::show(const ProgressReport& r) {
+  if (callback_) callback_(r);
+  if (!enabled_) return;
   const auto now = Clock::now();
   const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   const bool new_stage = r.stage != stage_;

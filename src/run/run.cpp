@@ -24,7 +24,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The signal that asks the running run to stop, or kStopRequested (request_stop); 0: none.
 std::atomic<int> stop_signal{0};
+constexpr int kStopRequested = -1;
 
 extern "C" void on_stop_signal(int sig) {
   stop_signal.store(sig);
@@ -73,7 +75,7 @@ struct Run {
         ae(ae_settings(c, damage.mean_block_size(), prepared.model->thickness)),
         driver(make_driver({c, *prepared.model, *prepared.solver, boundary, t,
                             o.max_steps > 0 ? o.max_steps : c.max_steps, o.max_steps > 0})),
-        progress(o.progress) {}
+        progress(o.progress, o.on_progress) {}
 
   double wall_seconds() const {
     return wall_before + std::chrono::duration<double>(Clock::now() - wall0).count();
@@ -146,7 +148,7 @@ struct Run {
     report_checkpoints();
     RunSummary s;
     s.exit_code = kStoppedForResume;
-    const int sig = stop_signal.load();
+    const int sig = stop_signal_received();
     s.status = fmt::format("stopped {} at step {}, checkpoint written",
                            sig ? fmt::format("by signal {}", sig) : std::string("as asked"),
                            prepared.solver->steps());
@@ -160,12 +162,22 @@ struct Run {
 }  // namespace
 
 void stop_on_signals() {
+  stop_signal.store(0);
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;
   sa.sa_flags = SA_RESETHAND;  // a second signal ends the run at once
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+}
+
+void request_stop() {
+  stop_signal.store(kStopRequested);
+}
+
+int stop_signal_received() {
+  const int sig = stop_signal.load();
+  return sig == kStopRequested ? 0 : sig;
 }
 
 // What a kill during a whole-file write left: the temporary names (io/atomic_file.hpp).
@@ -190,7 +202,8 @@ RunSummary run_model(const io::ModelConfig& cfg, const geometry::Tessellation& s
   return run.execute();
 }
 
-RunSummary resume_run(const fs::path& dir, long stop_at_step, bool progress) {
+RunSummary resume_run(const fs::path& dir, long stop_at_step, bool progress,
+                      std::function<void(const ProgressReport&)> on_progress) {
   const checkpoint::Contents contents = checkpoint::read_checkpoint(dir / kCheckpointFile);
   const checkpoint::Header& h = contents.header;
   std::vector<io::Override> overrides;
@@ -203,7 +216,7 @@ RunSummary resume_run(const fs::path& dir, long stop_at_step, bool progress) {
         "resume only the run it was written for, or start it again",
         (dir / kCheckpointFile).string(), h.model_file));
   const geometry::Tessellation specimen = make_specimen(cfg);
-  RunOptions options{dir, h.max_steps, h.write_vtk, progress, stop_at_step};
+  RunOptions options{dir, h.max_steps, h.write_vtk, progress, stop_at_step, std::move(on_progress)};
   Run run(cfg, specimen, options);
   run.header = h;
   run.wall_before = h.wall_seconds;

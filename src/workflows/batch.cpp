@@ -101,7 +101,7 @@ int run_batch(const BatchOptions& options) {
   // Rows travel as "index<TAB>exit code<TAB>row" lines, so rank 0 can put them in case order.
   std::string rows;
   try {
-    const CaseOptions case_options{options.max_steps, options.write_vtk};
+    const CaseOptions case_options{options.max_steps, options.write_vtk, options.executable};
     for (const auto& [i, o] : run_cases(plan.cases, mine, out, case_options, jobs, who))
       rows += fmt::format("{}\t{}\t{}", i, o.exit_code, row(plan, i, o, out));
   } catch (const std::exception& e) {

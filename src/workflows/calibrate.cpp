@@ -39,6 +39,7 @@ struct Interrupted : std::runtime_error {
 // The objective BOBYQA sees for a set whose runs failed: large, but finite (an infinite value
 // would corrupt its quadratic model).
 constexpr double kFailedObjective = 1e12;
+const RunQuantity kPeakStress{.name = "peak_stress_Pa"};  // what the envelopes fit
 
 // A summary.json number; "null", "" or anything not a number is NaN.
 double number_or_nan(const std::string& text) {
@@ -62,14 +63,16 @@ std::pair<double, double> envelope(const std::vector<double>& s3, const std::vec
 
 class Calibration {
  public:
-  Calibration(CalibrationPlan plan, fs::path out, int jobs, const Cluster& cluster)
-      : plan_(std::move(plan)), out_(std::move(out)), jobs_(jobs), cluster_(cluster) {
+  Calibration(CalibrationPlan plan, fs::path out, int jobs, fs::path executable,
+              const Cluster& cluster)
+      : plan_(std::move(plan)),
+        out_(std::move(out)),
+        jobs_(jobs),
+        executable_(std::move(executable)),
+        cluster_(cluster) {
     for (const CalibrationTarget& t : plan_.targets)
-      if (t.kind == TargetKind::summary &&
-          std::find(quantities_.begin(), quantities_.end(), t.quantity) == quantities_.end())
-        quantities_.push_back(t.quantity);
-    if (std::find(quantities_.begin(), quantities_.end(), "peak_stress_Pa") == quantities_.end())
-      quantities_.push_back("peak_stress_Pa");
+      if (t.kind == TargetKind::summary || t.kind == TargetKind::history) add_quantity(t.reads);
+    add_quantity(kPeakStress);
     // A calibration run again on its folder replays its finished evaluations at their earlier
     // times: the wall-time budget counts each second once.
     std::istringstream history(read_text(out_ / "history.csv"));
@@ -141,8 +144,19 @@ class Calibration {
   CalibrationPlan plan_;
   fs::path out_;
   int jobs_;
+  fs::path executable_;  // of the runs
   const Cluster& cluster_;
-  std::vector<std::string> quantities_;  // summary.json numbers read from every run
+  std::vector<RunQuantity> quantities_;  // read from every run
+
+  void add_quantity(const RunQuantity& q) {
+    if (quantity_index(q.key()) == quantities_.size()) quantities_.push_back(q);
+  }
+  std::size_t quantity_index(const std::string& key) const {
+    return static_cast<std::size_t>(
+        std::find_if(quantities_.begin(), quantities_.end(),
+                     [&](const RunQuantity& q) { return q.key() == key; }) -
+        quantities_.begin());
+  }
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   double offset_seconds_ = 0;            // s before start_ (replayed evaluations)
   std::vector<double> earlier_elapsed_;  // s, per evaluation of an earlier invocation
@@ -185,13 +199,12 @@ std::vector<Evaluation> Calibration::evaluate(std::vector<std::vector<double>> p
   const std::string who = cluster_.size() > 1 ? fmt::format("rank {}: ", cluster_.rank()) : "";
   const double before = shared_seconds_;
   std::string rows;
-  for (const auto& [i, o] : run_cases(cases, mine, out_ / "runs", {0, false}, jobs_, who)) {
-    const io::Json summary = read_summary(out_ / "runs" / cases[i].name / "summary.json");
+  for (const auto& [i, o] :
+       run_cases(cases, mine, out_ / "runs", {0, false, executable_}, jobs_, who)) {
     rows += fmt::format("{} {} {:.17g} {}", i, o.exit_code, o.wall_seconds, o.kept ? 1 : 0);
-    for (const std::string& q : quantities_) {
-      const io::Json v = summary_value(summary, q);
-      rows.append(" ").append(v.is_number() ? fmt::format("{:.17g}", v.get<double>()) : "nan");
-    }
+    for (const RunQuantity& q : quantities_)
+      rows.append(" ").append(
+          fmt::format("{:.17g}", run_quantity(out_ / "runs" / cases[i].name, q)));
     rows += '\n';
   }
   if (cluster_.rank() == 0) rows += fmt::format("T {:.17g}\n", elapsed());
@@ -251,10 +264,9 @@ Evaluation Calibration::score(std::vector<double> values, const std::string& pha
   e.runs = runs_used_;
   const std::size_t seeds = plan_.seeds.size();
   // A run that did not finish (unstable, step limit) gives no numbers.
-  auto quantity = [&](std::size_t test, std::size_t seed, const std::string& q) {
+  auto quantity = [&](std::size_t test, std::size_t seed, const RunQuantity& q) {
     const std::vector<double>& c = per_case[test * seeds + seed];
-    const auto at = std::find(quantities_.begin(), quantities_.end(), q) - quantities_.begin();
-    return c[0] != 0 ? NAN : c[3 + static_cast<std::size_t>(at)];
+    return c[0] != 0 ? NAN : c[3 + quantity_index(q.key())];
   };
   for (const std::vector<double>& c : per_case) {
     e.wall_seconds = std::max(e.wall_seconds, c[1]);
@@ -264,14 +276,14 @@ Evaluation Calibration::score(std::vector<double> values, const std::string& pha
   for (const CalibrationTarget& t : plan_.targets) {
     std::vector<double> samples;
     for (std::size_t s = 0; s < seeds; ++s) {
-      if (t.kind == TargetKind::summary) {
-        samples.push_back(quantity(t.tests[0], s, t.quantity));
+      if (t.kind == TargetKind::summary || t.kind == TargetKind::history) {
+        samples.push_back(quantity(t.tests[0], s, t.reads));
         continue;
       }
       std::vector<double> s3, s1;
       for (const std::size_t test : t.tests) {
         s3.push_back(plan_.tests[test].confining_stress);
-        s1.push_back(quantity(test, s, "peak_stress_Pa"));
+        s1.push_back(quantity(test, s, kPeakStress));
       }
       const auto [c, phi] = envelope(s3, s1);
       samples.push_back(t.kind == TargetKind::envelope_cohesion ? c : phi);
@@ -570,7 +582,7 @@ int calibrate(const CalibrateOptions& options) {
     jobs =
         cluster.size() > 1 ? 1 : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   try {
-    return Calibration(std::move(plan), out, jobs, cluster).run();
+    return Calibration(std::move(plan), out, jobs, options.executable, cluster).run();
   } catch (const TargetError& e) {
     if (lead) fmt::print(stderr, "error: {}\n", e.what());
     return bad_input;

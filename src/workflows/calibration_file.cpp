@@ -118,29 +118,58 @@ CalibrationParameter read_parameter(TomlSection& sec) {
   return p;
 }
 
+// quantity = "history.<column>" with at = { <column> = value } or at = { stage = "name:end" }.
+void read_history_quantity(TomlSection& sec, CalibrationTarget& t) {
+  t.kind = TargetKind::history;
+  t.reads.history = true;
+  t.reads.name = t.quantity.substr(std::string("history.").size());
+  if (t.reads.name.empty()) sec.fail("quantity", "history.<column>: name a history.csv column");
+  if (!sec.has("at"))
+    sec.fail("at",
+             "a history quantity needs `at`: { time = 3600.0 }, { axial_strain = 0.002 }, "
+             "{ axial_stress = 100e6 } (any column, its first crossing) or { stage = "
+             "\"load:end\" }");
+  TomlSection at = sec.sub("at");
+  if (at.table().size() != 1)
+    sec.fail("at", "give one column: { time = 3600.0 } or { stage = \"load:end\" }");
+  t.reads.at_column = std::string(at.table().begin()->first.str());
+  if (t.reads.at_column == "stage")
+    t.reads.at_stage = at.string("stage", nullptr);
+  else
+    t.reads.at_value = at.number(t.reads.at_column, NAN);
+}
+
 CalibrationTarget read_target(TomlSection& sec, const std::vector<CalibrationTest>& tests) {
   CalibrationTarget t;
   t.name = sec.string("name", nullptr);
   if (!folder_safe(t.name)) sec.fail("name", "letters, digits, _ and - only");
   t.origin = fmt::format("{}:{}: target '{}'", sec.file(), sec.line(), t.name);
   t.quantity = sec.string("quantity", nullptr);
+  t.reads.name = t.quantity;
   if (t.quantity == "cohesion_Pa")
     t.kind = TargetKind::envelope_cohesion;
   else if (t.quantity == "friction_angle_deg")
     t.kind = TargetKind::envelope_friction;
-  else if (std::find(kSummaryQuantities.begin(), kSummaryQuantities.end(), t.quantity) ==
-           kSummaryQuantities.end())
+  else if (t.quantity.starts_with("history."))
+    read_history_quantity(sec, t);
+  else if (t.quantity.find('.') == std::string::npos &&
+           std::find(kSummaryQuantities.begin(), kSummaryQuantities.end(), t.quantity) ==
+               kSummaryQuantities.end())
     sec.fail("quantity",
-             fmt::format("'{}' is not produced by any test: a summary.json number ({}) or an "
-                         "envelope's cohesion_Pa or friction_angle_deg",
+             fmt::format("'{}' is not produced by any test: a summary.json number ({}, or any "
+                         "by its dotted path: acoustic_emission.b_value), history.<column> with "
+                         "`at`, or an envelope's cohesion_Pa or friction_angle_deg",
                          t.quantity, fmt::join(kSummaryQuantities, ", ")));
+  if (t.kind != TargetKind::history && sec.has("at"))
+    sec.fail("at", "only a history.<column> quantity is read `at` a point of the run");
   const auto find_test = [&](const std::string& name, std::string_view key) {
     const auto it = std::find_if(tests.begin(), tests.end(),
                                  [&](const CalibrationTest& c) { return c.name == name; });
     if (it == tests.end()) sec.fail(key, fmt::format("no [[test]] is named '{}'", name));
     return static_cast<std::size_t>(it - tests.begin());
   };
-  const bool envelope = t.kind != TargetKind::summary;
+  const bool envelope =
+      t.kind == TargetKind::envelope_cohesion || t.kind == TargetKind::envelope_friction;
   if (envelope) {
     const toml::node* n = sec.node("tests");
     const toml::array* a = n ? n->as_array() : nullptr;
@@ -330,6 +359,12 @@ std::vector<Override> run_overrides(const CalibrationPlan& plan, std::size_t tes
     out.push_back({tie.key, value_text(v), tie.origin});
   }
   return out;
+}
+
+std::string RunQuantity::key() const {
+  if (!history) return name;
+  return at_column == "stage" ? fmt::format("history.{}@stage={}", name, at_stage)
+                              : fmt::format("history.{}@{}={:.17g}", name, at_column, at_value);
 }
 
 CalibrationPlan read_calibration_file(const std::filesystem::path& file) {

@@ -6,7 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -17,6 +20,7 @@
 #include "vorodec/drivers/registry.hpp"
 #include "vorodec/io/atomic_file.hpp"
 #include "vorodec/run/run.hpp"
+#include "vorodec/workflows/calibration_file.hpp"
 
 extern char** environ;
 
@@ -87,7 +91,8 @@ double earlier_wall_seconds(const fs::path& dir) {
   }
 }
 
-pid_t spawn_case(const std::vector<std::string>& args, const fs::path& dir, bool append_log) {
+pid_t spawn_case(const fs::path& executable, const std::vector<std::string>& args,
+                 const fs::path& dir, bool append_log) {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -98,7 +103,7 @@ pid_t spawn_case(const std::vector<std::string>& args, const fs::path& dir, bool
                                    O_WRONLY | O_CREAT | (append_log ? O_APPEND : O_TRUNC), 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = -1;
-  const int err = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+  const int err = posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (err != 0) throw std::runtime_error(fmt::format("cannot start a case: {}", strerror(err)));
   return pid;
@@ -138,9 +143,63 @@ io::Json summary_value(const io::Json& summary, const std::string& name) {
   if (!summary.is_object()) return nullptr;
   if (summary.contains(name)) return summary[name];
   const auto path = nested.find(name);
-  if (path == nested.end()) return nullptr;
-  const io::Json::json_pointer pointer(path->second);
-  return summary.contains(pointer) ? summary[pointer] : io::Json();
+  std::string pointer_text = path != nested.end() ? path->second : "/" + name;
+  if (path == nested.end()) std::replace(pointer_text.begin(), pointer_text.end(), '.', '/');
+  try {
+    const io::Json::json_pointer pointer(pointer_text);
+    return summary.contains(pointer) ? summary[pointer] : io::Json();
+  } catch (const io::Json::exception&) {  // a path through a list by a name: not there
+    return nullptr;
+  }
+}
+
+namespace {
+
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::istringstream in(line);
+  for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
+  return fields;
+}
+
+// A history.csv column where another first reaches a value (from below, interpolated between the
+// rows around it), or at the last row of a stage mark; NaN where the run never got there.
+double history_value(const fs::path& file, const RunQuantity& q) {
+  std::ifstream in(file);
+  std::string line;
+  if (!std::getline(in, line)) return NAN;
+  const std::vector<std::string> header = csv_fields(line);
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const std::size_t y = column(q.name), x = column(q.at_column);
+  if (y == header.size() || x == header.size()) return NAN;
+  double found = NAN, x0 = NAN, y0 = NAN;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = csv_fields(line);
+    if (f.size() != header.size()) continue;
+    const double yi = std::strtod(f[y].c_str(), nullptr);
+    if (!q.at_stage.empty()) {
+      if (f[x] == q.at_stage) found = yi;
+      continue;
+    }
+    const double xi = std::strtod(f[x].c_str(), nullptr);
+    if (xi >= q.at_value) {
+      if (std::isnan(x0) || xi == x0) return yi;
+      return y0 + (yi - y0) * (q.at_value - x0) / (xi - x0);
+    }
+    x0 = xi;
+    y0 = yi;
+  }
+  return found;
+}
+
+}  // namespace
+
+double run_quantity(const fs::path& run_dir, const RunQuantity& q) {
+  if (q.history) return history_value(run_dir / "history.csv", q);
+  const io::Json v = summary_value(read_summary(run_dir / "summary.json"), q.name);
+  return v.is_number() ? v.get<double>() : NAN;
 }
 
 std::map<std::size_t, CaseOutcome> run_cases(const std::vector<BatchCase>& cases,
@@ -180,11 +239,14 @@ std::map<std::size_t, CaseOutcome> run_cases(const std::vector<BatchCase>& cases
                  : command;
       // A resumed case's wall time counts its earlier parts, as its summary does.
       const double earlier = resume ? earlier_wall_seconds(dir) : 0.0;
-      running[spawn_case(args, dir, resume)] = {i, clock::now(), earlier};
+      running[spawn_case(options.executable, args, dir, resume)] = {i, clock::now(), earlier};
     }
     if (running.empty()) continue;  // every remaining case had finished before
     int status = 0;
-    const pid_t pid = waitpid(-1, &status, 0);
+    pid_t pid = -1;
+    do {  // a signal the calling process handles (Python's SIGINT) interrupts the wait
+      pid = waitpid(-1, &status, 0);
+    } while (pid < 0 && errno == EINTR);
     if (pid < 0) throw std::runtime_error("lost track of the running cases");
     const auto it = running.find(pid);
     if (it == running.end()) continue;

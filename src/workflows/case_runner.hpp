@@ -15,6 +15,9 @@ namespace vorodec::workflows {
 struct CaseOptions {
   long max_steps = 0;  // > 0: passed to every case as --max-steps
   bool write_vtk = true;
+  // The `vorodec` command the cases run: this process's own, unless it is not that command (the
+  // Python module).
+  std::filesystem::path executable = "/proc/self/exe";
 };
 
 struct CaseOutcome {
@@ -34,8 +37,9 @@ std::map<std::size_t, CaseOutcome> run_cases(const std::vector<BatchCase>& cases
 // A run's summary.json, parsed; null when the run wrote none or it does not parse.
 io::Json read_summary(const std::filesystem::path& file);
 
-// A summary's value named `name`: a top-level key, or a nested one by its own name
-// ("crack_initiation_stress_Pa" in "failure_stages"); null when absent.
+// A summary's value named `name`: a top-level key, a nested one by its own name
+// ("crack_initiation_stress_Pa" in "failure_stages") or by its dotted path
+// ("acoustic_emission.b_value", "corrosion_stages.1.failure_time_s"); null when absent.
 io::Json summary_value(const io::Json& summary, const std::string& name);
 
 std::string read_text(const std::filesystem::path& file);

@@ -11,8 +11,13 @@
 
 namespace vorodec::run {
 
-// The specimen of a model file: tessellated, or loaded from a prepared specimen file.
+// The specimen of a model file: tessellated, or loaded from a prepared specimen file. An
+// impossible geometry is bad input (io::ModelFileError naming the file and [specimen]'s line).
 geometry::Tessellation make_specimen(const io::ModelConfig& cfg);
+
+// The specimen's geometry report for a person (blocks, edges, angles, grains and minerals), without
+// its warnings (t.report.warnings).
+std::string specimen_report(const io::ModelConfig& cfg, const geometry::Tessellation& t);
 
 // A model ready to step: blocks, platens and initial contacts detected.
 struct PreparedModel {

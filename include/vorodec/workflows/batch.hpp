@@ -12,6 +12,7 @@ struct BatchOptions {
   int jobs = 0;               // cases at a time per process; 0: all cores (1 per MPI rank)
   long max_steps = 0;         // > 0: passed to every case as --max-steps
   bool write_vtk = true;
+  std::filesystem::path executable = "/proc/self/exe";  // the `vorodec` that runs the cases
 };
 
 // Exit code: 0 every case exited 0; 5 some case did not (its row says how); 2 bad batch input.

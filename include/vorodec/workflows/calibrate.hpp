@@ -16,6 +16,7 @@ struct CalibrateOptions {
   std::filesystem::path out;  // empty: the file's `output`
   int jobs = 0;               // runs at a time per process; 0: all cores (1 per MPI rank)
   bool check = false;         // validate the file (and the bounds against the models), run nothing
+  std::filesystem::path executable = "/proc/self/exe";  // the `vorodec` that runs the tests
 };
 
 // Exit code: 0 every target within tolerance; 5 the budget ran out first (the best set is

@@ -37,11 +37,29 @@ struct Tie {
   std::string origin;
 };
 
-enum class TargetKind { summary, envelope_cohesion, envelope_friction };
+enum class TargetKind { summary, history, envelope_cohesion, envelope_friction };
+
+// What a target reads from one run: a summary.json number (by name, or by its dotted path
+// "acoustic_emission.b_value"), or a history.csv column's value where another column first
+// reaches a value (interpolated between rows) or at the row a stage marks ("creep190:end").
+struct RunQuantity {
+  std::string name;  // the summary name or path, or the history column
+  bool history = false;
+  std::string at_column{};  // history: "time", "axial_strain", "axial_stress", ... or "stage"
+  double at_value = 0;
+  std::string at_stage{};   // when at_column is "stage"
+  std::string key() const;  // one text per distinct quantity
+};
+
+// What `q` reads from the finished run in `run_dir` (summary.json, history.csv); NaN when the run
+// did not produce it (no such number or column, or the run never reached the `at` point).
+double run_quantity(const std::filesystem::path& run_dir, const RunQuantity& q);
 
 struct CalibrationTarget {
   std::string name;
-  std::string quantity;  // a summary.json key, or cohesion_Pa / friction_angle_deg
+  std::string quantity;  // as the file gives it: a summary.json number, history.<column>, or
+                         // cohesion_Pa / friction_angle_deg
+  RunQuantity reads;     // summary and history targets
   TargetKind kind = TargetKind::summary;
   std::vector<std::size_t> tests;  // one for a summary key; two or more for an envelope
   double value = 0;
