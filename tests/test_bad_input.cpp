@@ -565,3 +565,16 @@ TEST(BadInput, BlockBarsWithAFreeStruckEndAreRejected) {
   EXPECT_TRUE(rejected("shpb_block_free_end", text, "shpb.incident_bar.far_end",
                        line_of(text, "far_end = \"free\""), "enters through the incident bar"));
 }
+
+TEST(BadInput, ConfiningRampWithoutConfinementOrWithAnImplicitStartIsRejected) {
+  EXPECT_TRUE(
+      rejected("ramp_alone",
+               replace(good_model, "[[stage]]", "[loading]\nconfining_ramp_time = 1e-3\n[[stage]]"),
+               "loading.confining_ramp_time", 15, "give confining_stress too"));
+  EXPECT_TRUE(rejected(
+      "ramp_implicit",
+      replace(replace(good_model, "[[stage]]",
+                      "[loading]\nconfining_stress = 5e6\nconfining_ramp_time = 1e-3\n[[stage]]"),
+              "end_axial_strain = 0.001", "end_axial_strain = 0.001\nimplicit_start = true"),
+      "implicit_start", 20, "leave out loading.confining_ramp_time"));
+}

@@ -176,3 +176,14 @@ TEST(StageControl, ReloadingThatDipsWhileItsVelocityRampsUpDoesNotStall) {
   for (double s : {10e3, 0.0, 0.0, 0.0, 0.0, 5e3})
     EXPECT_EQ(c.judge({0.0, s, 0.0, true}), loading::StageOutcome::running);
 }
+
+TEST(StageControl, ConfinedSpecimenDropBelowTheConfinementIsNoPeak) {
+  loading::Stage load;
+  load.platen_velocity = 0.01;
+  load.end.post_peak_fraction = 0.5;
+  loading::StageControl c(load, 0.0, 0.0, 0.0);
+  // The lateral squeeze of a 20 MPa step lifts the axial stress and lets it fall back.
+  for (double s : {3e6, 6e6, 4e6, 2e6, 1e6, 0.5e6, 10e6, 40e6, 60e6, 50e6, 40e6, 31e6})
+    EXPECT_EQ(c.judge({0.0, s, 0.0, true, 20e6}), loading::StageOutcome::running) << s;
+  EXPECT_EQ(c.judge({0.0, 29e6, 0.0, true, 20e6}), loading::StageOutcome::done);
+}

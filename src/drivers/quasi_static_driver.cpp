@@ -181,7 +181,8 @@ void QuasiStaticDriver::step(Observers& observers) {
       boundary_.width());
   boundary_.set_platen_velocity(model_, v_);
   if (quiet_) quiet_->clear_loads(model_);
-  boundary_.apply_confinement(model_, cfg_.load_path.confining_stress);
+  const double confinement = cfg_.load_path.confinement_at(solver_.time());
+  boundary_.apply_confinement(model_, confinement);
   if (quiet_) quiet_->apply(model_, solver_.time());
   solver_.step();
   state_ = measure::measure_specimen(model_, boundary_, solver_);
@@ -189,8 +190,8 @@ void QuasiStaticDriver::step(Observers& observers) {
   track_extremes(outcome_, state_.axial_stress);
   const Due d = due(solver_.steps(), cfg_.output.history_steps, cfg_.output.vtk_steps);
   if (d.row || d.frame) observers.sample(view(), {st.name, d.row, d.frame});
-  const loading::StageOutcome outcome =
-      control.judge({solver_.time() - t0_, state_.axial_stress, state_.axial_strain, d.row});
+  const loading::StageOutcome outcome = control.judge(
+      {solver_.time() - t0_, state_.axial_stress, state_.axial_strain, d.row, confinement});
   stage_fraction_ = std::max(stage_fraction_, control.fraction());
   if (mode_) {
     const ModeVerdict verdict = mode_->after_step(context(), state_);

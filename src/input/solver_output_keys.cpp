@@ -47,6 +47,9 @@ void read_loading_table(TomlSection& top, ModelConfig& cfg) {
   if (!top.has("loading")) return;
   TomlSection l = top.sub("loading");
   cfg.load_path.confining_stress = l.non_negative("confining_stress", 0.0);
+  cfg.load_path.confining_ramp_time = l.non_negative("confining_ramp_time", 0.0);
+  if (cfg.load_path.confining_ramp_time > 0 && cfg.load_path.confining_stress == 0)
+    l.fail("confining_ramp_time", "ramps the confinement: give confining_stress too");
   l.finish();
 }
 

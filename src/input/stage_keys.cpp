@@ -77,6 +77,9 @@ void read_implicit_start(TomlSection& sec, loading::Stage& st, bool first, Model
   if (cfg.solver.gravity.x != 0 || cfg.solver.gravity.y != 0)
     sec.fail("implicit_start", "needs [solver] gravity = [0, 0]");
   if (cfg.deformable.enabled) sec.fail("implicit_start", "needs rigid blocks");
+  if (cfg.load_path.confining_ramp_time > 0)
+    sec.fail("implicit_start",
+             "brings the confinement on statically: leave out loading.confining_ramp_time");
   st.implicit_start_fraction = sec.positive("implicit_start_fraction", 0.9);
   if (st.implicit_start_fraction > 1)
     sec.fail("implicit_start_fraction",

@@ -68,9 +68,8 @@ StageOutcome StageControl::judge(const StageSample& s) {
   }
   bool past_peak = false;
   // Pulling platens (direct tension): peaks are judged on the tensile stress.
-  const double load = st_.control == Control::platen_velocity && st_.platen_velocity < 0
-                          ? -s.axial_stress
-                          : s.axial_stress;
+  const bool pulling = st_.control == Control::platen_velocity && st_.platen_velocity < 0;
+  const double load = pulling ? -s.axial_stress : s.axial_stress;
   if (s.history_row) {
     // Judged on history rows: the peak must lie three rows back, so start-up noise is no peak.
     if (load > row_peak_) {
@@ -80,8 +79,10 @@ StageOutcome StageControl::judge(const StageSample& s) {
       ++rows_since_peak_;
     }
     // A peak counts once the stress has risen 0.1 MPa above its start: a stage that begins at a
-    // low stress while its velocity ramps up (after an unloading) is not past a peak.
-    past_peak = row_peak_ > std::max(stress0_, 0.0) + 1e5 && rows_since_peak_ >= 3;
+    // low stress while its velocity ramps up (after an unloading) is not past a peak. In
+    // compression it must also exceed the confinement (see StageSample::confining_stress).
+    const double floor = std::max(stress0_, pulling ? 0.0 : s.confining_stress);
+    past_peak = row_peak_ > std::max(floor, 0.0) + 1e5 && rows_since_peak_ >= 3;
     past_peak_ = past_peak;
   }
   if (!std::isnan(end.post_peak_fraction) && past_peak) {

@@ -87,7 +87,15 @@ void append_cycles(const CyclicBlock& block, std::vector<Stage>& stages);
 
 struct LoadPath {
   double confining_stress = 0.0;  // Pa, traction on the lateral boundary (compression +)
+  // s: the confinement rises linearly from 0 over this time from the path's start, as a
+  // laboratory brings it on (0: all at once, a step the specimen rings from without damping).
+  double confining_ramp_time = 0.0;
   std::vector<Stage> stages;
+
+  // Pa, the lateral traction at time t (s) of the run.
+  double confinement_at(double t) const {
+    return t >= confining_ramp_time ? confining_stress : confining_stress * t / confining_ramp_time;
+  }
 };
 
 }  // namespace vorodec::loading

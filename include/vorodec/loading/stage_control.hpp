@@ -10,6 +10,9 @@ struct StageSample {
   double axial_stress = 0;   // Pa, compression +
   double axial_strain = 0;   // -, shortening +
   bool history_row = false;  // this step writes a history row (peaks are judged on rows)
+  // Pa, the lateral stress now: a compressed specimen fails only above it, so a peak below it
+  // is the confinement's transient (its squeeze of the specimen), never the specimen's peak.
+  double confining_stress = 0;
 };
 
 enum class StageOutcome { running, done, stalled };
