@@ -578,3 +578,10 @@ TEST(BadInput, ConfiningRampWithoutConfinementOrWithAnImplicitStartIsRejected) {
               "end_axial_strain = 0.001", "end_axial_strain = 0.001\nimplicit_start = true"),
       "implicit_start", 20, "leave out loading.confining_ramp_time"));
 }
+
+TEST(BadInput, PlatensOtherThanTopOrBothAreRejected) {
+  EXPECT_TRUE(
+      rejected("platens_bottom",
+               replace(good_model, "[[stage]]", "[loading]\nplatens = \"bottom\"\n[[stage]]"),
+               "loading.platens", 15, "must be \"top\" or \"both\""));
+}

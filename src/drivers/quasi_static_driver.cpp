@@ -179,7 +179,7 @@ void QuasiStaticDriver::step(Observers& observers) {
       ts, state_.axial_stress,
       solver_.contact_stiffness_on(static_cast<std::size_t>(boundary_.top_platen())), solver_.dt(),
       boundary_.width());
-  boundary_.set_platen_velocity(model_, v_);
+  boundary_.set_platen_velocity(model_, v_, cfg_.load_path.both_platens);
   if (quiet_) quiet_->clear_loads(model_);
   const double confinement = cfg_.load_path.confinement_at(solver_.time());
   boundary_.apply_confinement(model_, confinement);

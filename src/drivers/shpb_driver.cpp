@@ -101,6 +101,8 @@ std::shared_ptr<const loading::ExtensionSettings> ShpbDriver::read_table(
     io::TomlSection& sec, io::TomlSection& top, const io::ModelConfig& cfg) {
   if (cfg.load_path.confining_stress > 0)
     top.fail("loading", "a [shpb] test has no confinement: leave out confining_stress");
+  if (cfg.load_path.both_platens)
+    top.fail("loading", "a [shpb] test is loaded by its bars: leave out platens");
   if (cfg.solver.time_step > 0)
     io::TomlSection(*top.table()["solver"].as_table(), "solver", top.file())
         .fail("time_step", "density scaling would change the inertia a [shpb] test measures");

@@ -50,6 +50,11 @@ void read_loading_table(TomlSection& top, ModelConfig& cfg) {
   cfg.load_path.confining_ramp_time = l.non_negative("confining_ramp_time", 0.0);
   if (cfg.load_path.confining_ramp_time > 0 && cfg.load_path.confining_stress == 0)
     l.fail("confining_ramp_time", "ramps the confinement: give confining_stress too");
+  const std::string top_only = "top";
+  const std::string platens = l.string("platens", &top_only);
+  if (platens != "top" && platens != "both")
+    l.fail("platens", "must be \"top\" or \"both\" (got \"" + platens + "\")");
+  cfg.load_path.both_platens = platens == "both";
   l.finish();
 }
 

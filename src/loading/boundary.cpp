@@ -80,10 +80,11 @@ void SpecimenBoundary::apply_confinement(model::Model& model, double sigma3) con
   }
 }
 
-void SpecimenBoundary::set_platen_velocity(model::Model& model, double v_top) const {
+void SpecimenBoundary::set_platen_velocity(model::Model& model, double v, bool both) const {
   auto& bl = model.blocks;
-  if (top_ >= 0) bl.vy[static_cast<std::size_t>(top_)] = -v_top;
-  if (bottom_ >= 0) bl.vy[static_cast<std::size_t>(bottom_)] = 0.0;
+  const double v_bottom = both ? 0.5 * v : 0.0;
+  if (top_ >= 0) bl.vy[static_cast<std::size_t>(top_)] = -(v - v_bottom);
+  if (bottom_ >= 0) bl.vy[static_cast<std::size_t>(bottom_)] = v_bottom;
 }
 
 }  // namespace vorodec::loading

@@ -21,7 +21,8 @@ class SpecimenBoundary {
 
   // Confining traction on the lateral edges, recomputed from the current geometry (follower load).
   void apply_confinement(model::Model& model, double sigma3) const;
-  void set_platen_velocity(model::Model& model, double v_top) const;
+  // v: the closing speed (m/s, shortening +), all on the top platen or half on each.
+  void set_platen_velocity(model::Model& model, double v, bool both = false) const;
 
   double width() const { return width_; }    // m, initial
   double height() const { return height_; }  // m, initial

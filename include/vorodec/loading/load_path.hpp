@@ -90,6 +90,9 @@ struct LoadPath {
   // s: the confinement rises linearly from 0 over this time from the path's start, as a
   // laboratory brings it on (0: all at once, a step the specimen rings from without damping).
   double confining_ramp_time = 0.0;
+  // Both platens close on the specimen, each at half the platen velocity (a stage's velocity is
+  // always the closing speed, so strain rates and servos read the same); false: the top one.
+  bool both_platens = false;
   std::vector<Stage> stages;
 
   // Pa, the lateral traction at time t (s) of the run.
