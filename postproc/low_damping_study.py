@@ -99,7 +99,7 @@ def main():
     ax2.set_xlabel("axial strain (%)")
     ax2.set_ylabel("cumulative cracks")
     ax2.legend(fontsize=8)
-    fig.suptitle("B6: the same bonded specimen at two damping levels (0.2 m/s)", fontsize=10)
+    fig.suptitle("B6: the same bonded specimen at two damping levels", fontsize=10)
     fig.tight_layout()
     fig.savefig(a.out + ".png", dpi=130)
 
