@@ -585,3 +585,13 @@ TEST(BadInput, PlatensOtherThanTopOrBothAreRejected) {
                replace(good_model, "[[stage]]", "[loading]\nplatens = \"bottom\"\n[[stage]]"),
                "loading.platens", 15, "must be \"top\" or \"both\""));
 }
+
+TEST(BadInput, IncidentWaveGivenTwiceOrNotAtAllIsRejected) {
+  const std::string twice = replace(shpb_model(), "striker_velocity = 5\n",
+                                    "striker_velocity = 5\nincident_stress = 2e8\n");
+  EXPECT_TRUE(rejected("shpb_wave_twice", twice, "shpb.incident_stress",
+                       line_of(twice, "incident_stress"), "given twice"));
+  const std::string none = replace(shpb_model(), "striker_velocity = 5\n", "");
+  EXPECT_TRUE(rejected("shpb_wave_none", none, "shpb.striker_velocity", line_of(none, "[shpb]"),
+                       "incident_particle_velocity"));
+}

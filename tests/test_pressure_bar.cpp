@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include "../verification/cases/cases.hpp"
 #include "run_support.hpp"
@@ -116,4 +118,42 @@ TEST(ShpbRun, BlockBarsCarryTheStrikersPulseAndAgreeWithTheFaceForces) {
                   0.02 * json_number(s, "peak_face_force_stress_Pa"));
     }
   }
+}
+
+// The incident wave as a striker speed, a particle velocity (half of it) or a stress
+// (rho c0 v / 2) is the same test: the same history and gauges, the same strength to the rounding
+// of 2 sigma / (rho c0).
+TEST(ShpbRun, StrikerSpeedParticleVelocityAndIncidentStressGiveTheSameTest) {
+  const fs::path dir = fs::temp_directory_path() / "vorodec_shpb_input";
+  fs::create_directories(dir);
+  const std::string base = slurp(fs::path(VORODEC_SOURCE_DIR) / "tests/models/shpb_small.toml");
+  const std::string striker_line = "striker_velocity = 5.0       # m/s";
+  ASSERT_NE(base.find(striker_line), std::string::npos);
+  const auto run = [&](const std::string& name, const std::string& line) {
+    std::string text = base;
+    text.replace(text.find(striker_line), striker_line.size(), line);
+    std::ofstream(dir / (name + ".toml")) << text;
+    const fs::path out = dir / name;
+    fs::remove_all(out);
+    EXPECT_EQ(vorodec::testing::run_vorodec("run " + (dir / (name + ".toml")).string() +
+                                            " --threads 1 --no-vtk --out " + out.string()),
+              0)
+        << name;
+    return out;
+  };
+  // shpb_small's bar: E 210.912 GPa, 7800 kg/m^3; striker 5 m/s.
+  const double stress = 0.5 * 7800 * std::sqrt(210.912e9 / 7800) * 5.0;
+  const fs::path striker_run = run("striker", striker_line);
+  const fs::path particle_run = run("particle", "incident_particle_velocity = 2.5");
+  char line[64];
+  std::snprintf(line, sizeof line, "incident_stress = %.17g", stress);
+  const fs::path stress_run = run("stress", line);
+  for (const char* f : {"history.csv", "gauges.csv"})
+    EXPECT_EQ(slurp(particle_run / f), slurp(striker_run / f)) << f;
+  const std::string striker = slurp(striker_run / "summary.json");
+  const std::string by_stress = slurp(stress_run / "summary.json");
+  EXPECT_NEAR(json_number(by_stress, "incident_stress_Pa"), stress, 1e-9 * stress);
+  EXPECT_NEAR(json_number(by_stress, "dynamic_strength_Pa"),
+              json_number(striker, "dynamic_strength_Pa"),
+              1e-9 * json_number(striker, "dynamic_strength_Pa"));
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "vorodec/checkpoint/archive_io.hpp"
@@ -55,13 +56,34 @@ void read_block_bars(io::TomlSection& sec, loading::ShpbConfig& s) {
              fmt::format("{} m: each bar needs at least two blocks", s.bar_block_length));
 }
 
+// m/s, the striker speed from whichever of the three readings of the incident wave the file
+// gives (docs/dynamics.md): a striker of the bar's impedance sends rho c0 v / 2, a particle
+// velocity of v / 2.
+double read_incident_wave(io::TomlSection& sec, const loading::BarProperties& bar) {
+  static constexpr std::array<const char*, 3> keys = {"striker_velocity", "incident_stress",
+                                                      "incident_particle_velocity"};
+  const char* given = nullptr;
+  for (const char* k : keys)
+    if (sec.has(k)) {
+      if (given)
+        sec.fail(k, fmt::format("the incident wave is given twice: keep {} or {}", given, k));
+      given = k;
+    }
+  if (!given)
+    sec.fail("striker_velocity",
+             "required (or incident_stress, Pa, or incident_particle_velocity, m/s)");
+  const double value = sec.positive(given, laws::required);
+  if (given == keys[0]) return value;
+  return given == keys[1] ? 2.0 * value / bar.impedance() : 2.0 * value;
+}
+
 // [shpb] with [shpb.incident_bar] and [shpb.transmitted_bar].
 loading::ShpbConfig read_shpb(io::TomlSection& sec) {
   loading::ShpbConfig s;
   s.incident = read_bar(sec.sub("incident_bar"), nullptr, s.incident_gauges);
   s.transmitted = read_bar(sec.sub("transmitted_bar"), &s.incident, s.transmitted_gauges);
   s.striker_length = sec.positive("striker_length", laws::required);
-  s.striker_velocity = sec.positive("striker_velocity", laws::required);
+  s.striker_velocity = read_incident_wave(sec, s.incident);
   const double pulse = 2.0 * s.striker_length / s.incident.wave_speed();
   if (2.0 * s.striker_length >= s.incident.length)
     sec.fail("striker_length",
