@@ -36,6 +36,18 @@ TEST(Verification, A5ShearDropsToResidualFriction) {
 TEST(Verification, A5DilationOpensBySlipTimesTanPsi) {
   EXPECT_TRUE(passes(a5_dilation()));
 }
+TEST(Verification, R2RoughJointPeaksAtBartonChoubeyStrength) {
+  EXPECT_TRUE(passes(r2_peak_strength()));
+}
+TEST(Verification, R2RoughJointSoftensToResidualFriction) {
+  EXPECT_TRUE(passes(r2_residual_strength()));
+}
+TEST(Verification, R2RoughJointDilatesAtHalfItsRoughnessAngle) {
+  EXPECT_TRUE(passes(r2_dilation()));
+}
+TEST(Verification, R2RoughJointClosesOnTheBandisHyperbola) {
+  EXPECT_TRUE(passes(r2_normal_closure()));
+}
 TEST(Verification, A6TensionBreaksAtStrengthTimesLength) {
   EXPECT_TRUE(passes(a6_direct_tension()));
 }

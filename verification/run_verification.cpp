@@ -4,7 +4,7 @@
 //                       [--marble-only] [--dynamics-only] [--shpb-only] [--calibration-only]
 //                       [--granite-calibration-only] [--two-nu-only] [--marble-sets-only]
 //                       [--deformable-marble-only] [--stability-only]
-//                       [--deformable-joint-only]
+//                       [--deformable-joint-only] [--rock-only]
 // --ladders adds the whole-model convergence ladders (about 10 minutes on one core).
 // --grains-only runs the grain-based cases only (G1, G2, B5; about 6 minutes on 2 cores).
 // --dynamics-only runs A8, A9, the quiet boundaries and the undamped assembly (about 6 minutes).
@@ -21,6 +21,7 @@
 // --deformable-joint-only runs the joint between two zoned blocks, its zone-size ladders and the
 //   deformable_small zone-size ladder (about 2 minutes).
 // --marble-only runs the marble's published cases only (B1, B2; about 15 minutes on 2 cores).
+// --rock-only runs the rough-joint and jointed-rock cases (R2, J1) into their own section.
 // --speeds-only runs only the quasi-static speed table: fixed against adaptive platen speeds on
 // the default model (about 8 minutes on one core).
 #include <fmt/format.h>
@@ -295,7 +296,7 @@ int main(int argc, char** argv) {
         "[--corrosion-only] [--marble-only] [--dynamics-only] [--shpb-only] "
         "[--calibration-only] [--granite-calibration-only] [--two-nu-only] [--marble-sets-only] "
         "[--deformable-marble-only] [--stability-only] "
-        "[--deformable-joint-only]\n",
+        "[--deformable-joint-only] [--rock-only]\n",
         argv[0]);
     return 2;
   }
@@ -303,7 +304,7 @@ int main(int argc, char** argv) {
        grains_only = false, speeds_only = false, creep_only = false, corrosion_only = false,
        marble_only = false, dynamics_only = false, shpb_only = false, c1 = false, c2 = false,
        c3 = false, two_nu_b2 = false, marble_sets = false, deformable_marble_only = false,
-       stability_only = false, joint_only = false;
+       stability_only = false, joint_only = false, rock_only = false;
   // Each flag and the parts it asks for.
   const std::map<std::string, std::vector<bool*>, std::less<>> options{
       {"--analytic-only", {&analytic_only}},
@@ -322,7 +323,8 @@ int main(int argc, char** argv) {
       {"--marble-only", {&marble_only}},
       {"--deformable-marble-only", {&deformable_marble_only}},
       {"--stability-only", {&stability_only}},
-      {"--deformable-joint-only", {&joint_only}}};
+      {"--deformable-joint-only", {&joint_only}},
+      {"--rock-only", {&rock_only}}};
   for (int i = 4; i < argc; ++i) {
     const auto option = options.find(std::string_view(argv[i]));
     if (option == options.end()) {
@@ -430,6 +432,18 @@ int main(int argc, char** argv) {
     }
     std::fprintf(stderr, "report: %s\n", argv[3]);
     return r.pass() ? 0 : 1;
+  }
+  if (rock_only) {  // rough joints and jointed rock (R, J)
+    std::ofstream out(argv[3]);
+    write_table_head(out, "rock joints and rock masses (R, J)", "--rock-only");
+    int failed = 0;
+    const auto rows = rock_cases(argv[1], argv[2]);
+    for (const auto& r : rows) {
+      failed += !r.pass();
+      out << report_row(r);
+    }
+    std::fprintf(stderr, "%d of %zu checks failed; report: %s\n", failed, rows.size(), argv[3]);
+    return failed ? 1 : 0;
   }
   if (stability_only) {  // the stiff and extreme cases (about 4 minutes on one core)
     std::ofstream out(argv[3]);

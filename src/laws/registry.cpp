@@ -8,10 +8,11 @@ namespace vorodec::laws {
 extern const LawInfo mohr_coulomb_info;
 extern const LawInfo linear_elastic_info;
 extern const LawInfo burgers_info;
+extern const LawInfo barton_bandis_info;
 
 std::span<const LawInfo> law_registry() {
-  static const std::array<LawInfo, 3> registry{mohr_coulomb_info, linear_elastic_info,
-                                               burgers_info};
+  static const std::array<LawInfo, 4> registry{mohr_coulomb_info, linear_elastic_info,
+                                               burgers_info, barton_bandis_info};
   return registry;
 }
 

@@ -37,6 +37,14 @@ CaseResult a7_weibull_ks();
 CaseResult a7_weibull_mean();
 CaseResult a8_local_damping();
 
+// R2: one Barton-Bandis contact (verification/cases/joint_cases.cpp, milliseconds).
+CaseResult r2_peak_strength();
+CaseResult r2_residual_strength();
+CaseResult r2_dilation();
+CaseResult r2_normal_closure();
+// The rock-mass cases (R, J), run by `vorodec_verify --rock-only` into their own section.
+std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::string& binary);
+
 // One Burger's contact held at a constant force (fast: part of the unit tests too).
 CaseResult a10_burgers_creep(bool shear);
 

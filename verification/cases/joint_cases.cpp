@@ -1,0 +1,142 @@
+// R2: one Barton-Bandis contact in direct shear under a constant normal stress, and in normal
+// closure (docs/theory.md §6.6). The normal stress is held by moving the gap each step.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "cases.hpp"
+#include "vorodec/laws/barton_bandis.hpp"
+
+namespace vorodec::verification {
+
+namespace {
+
+using laws::BartonBandis;
+
+// A rough granite joint: JRC 10, JCS 100 MPa, phi_r 30 deg [Barton1977]; kni 20 GPa/m and
+// vm 0.5 mm [Bandis1983]; 0.1 m of joint per contact.
+constexpr double L = 0.1;
+BartonBandis::Props rough_joint() {
+  return {20e9, 0.5e-3, 2e9, 10.0, 100e6, 30.0, 100e6, L};
+}
+
+double barton_peak(double sn) {  // Pa, Barton-Choubey with the 70 deg ceiling
+  const double deg = std::min(10.0 * std::log10(100e6 / sn) + 30.0, 70.0);
+  return sn * std::tan(deg * M_PI / 180.0);
+}
+
+struct ShearRun {
+  double peak;          // Pa
+  double last;          // Pa, after `slide` of shear displacement
+  double dilation_tan;  // opening / plastic slip in the first sliding steps after the peak
+};
+
+// Shears the contact by `slide` in steps of `du` at constant normal stress sn.
+ShearRun shear_at(double sn, double slide, double du) {
+  const auto p = rough_joint();
+  BartonBandis::State st{0.0, 0.0, 0.0, 0.0};
+  ShearRun out{0, 0, 0};
+  double opening = 0, plastic = 0;
+  int sliding_steps = 0;
+  for (double s = 0; s < slide; s += du) {
+    const double gap = st.u_dil - BartonBandis::closure_at(p, sn);
+    const double fs_before = st.fs, u_before = st.u_dil;
+    const auto r = BartonBandis::evaluate({gap, 0.0, -du, L, 1e-6}, p, st);
+    out.peak = std::max(out.peak, std::abs(r.fs) / L);
+    out.last = std::abs(r.fs) / L;
+    if (r.event == laws::ContactEvent::slip && sliding_steps < 20) {
+      ++sliding_steps;
+      opening += st.u_dil - u_before;
+      plastic += du - (st.fs - fs_before) / (p.ks * L);
+    }
+  }
+  out.dilation_tan = opening / plastic;
+  return out;
+}
+
+constexpr double stresses[] = {0.5e6, 1e6, 2e6, 5e6, 10e6, 20e6, 50e6};
+
+template <class F>
+CaseResult timed(CaseResult r, F body) {
+  const auto t0 = std::chrono::steady_clock::now();
+  body(r);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace
+
+CaseResult r2_peak_strength() {
+  return timed({"R2", "rough joint (JRC 10, JCS 100 MPa, phi_r 30 deg) in direct shear: peak",
+                "tau_p = sn tan(JRC log10(JCS/sn) + phi_r) [Barton1977]; worst of sn = 0.5-50 MPa",
+                0, 0, 0, 0.01, "shear steps 1 um, sn held"},
+               [](CaseResult& r) {
+                 const double ks = rough_joint().ks;
+                 for (double sn : stresses) {
+                   const double peak = shear_at(sn, 1.5 * barton_peak(sn) / ks, 1e-6).peak;
+                   const double e = std::abs(peak / barton_peak(sn) - 1);
+                   if (e >= r.error) r.measured = peak, r.expected = barton_peak(sn), r.error = e;
+                 }
+               });
+}
+
+CaseResult r2_residual_strength() {
+  return timed({"R2", "rough joint: strength after 100 x the peak displacement",
+                "tau_r = sn tan(phi_r) (mobilised JRC 0) [Barton1982]; worst of sn = 0.5-50 MPa", 0,
+                0, 0, 0.01, "shear steps 10 um, sn held"},
+               [](CaseResult& r) {
+                 const auto p = rough_joint();
+                 for (double sn : stresses) {
+                   const double peak_slide = barton_peak(sn) / p.ks;
+                   const double last = shear_at(sn, 101 * peak_slide, 1e-5).last;
+                   const double residual = sn * std::tan(M_PI / 6);
+                   const double e = std::abs(last / residual - 1);
+                   if (e >= r.error) r.measured = last, r.expected = residual, r.error = e;
+                 }
+               });
+}
+
+CaseResult r2_dilation() {
+  return timed({"R2", "rough joint: dilation at the peak, sn = 5 MPa",
+                "tan(JRC log10(JCS/sn) / 2) [Barton1977]",
+                std::tan(0.5 * 10 * std::log10(20.0) * M_PI / 180), 0, 0, 0.01,
+                "opening / plastic slip over the first 20 sliding steps of 1 um"},
+               [](CaseResult& r) {
+                 r.measured = shear_at(5e6, 0.01, 1e-6).dilation_tan;
+                 r.error = std::abs(r.measured / r.expected - 1);
+               });
+}
+
+CaseResult r2_normal_closure() {
+  return timed({"R2", "rough joint: normal closure up to 0.9 JCS, and its stored energy",
+                "v = sn vm / (kni vm + sn) [Bandis1983]; energy = integral of sn dv (trapezoid "
+                "over the closure steps)",
+                0, 0, 0, 0.01, "closure steps vm / 2e5"},
+               [](CaseResult& r) {
+                 const auto p = rough_joint();
+                 BartonBandis::State st{0.0, 0.0, 0.0, 0.0};
+                 double work = 0, sn_prev = 0, worst = 0;
+                 for (int i = 1; i <= 200000; ++i) {
+                   const double v = p.vm * i / 2e5;
+                   const double sn = BartonBandis::evaluate({-v, 0, 0, L, 1e-6}, p, st).fn / L;
+                   if (sn > 0.9 * p.jcs) break;
+                   work += 0.5 * (sn + sn_prev) * p.vm / 2e5 * L;
+                   sn_prev = sn;
+                   if (sn > 0.01 * p.jcs) {
+                     const double expected = sn * p.vm / (p.kni * p.vm + sn);
+                     worst = std::max(worst, std::abs(v / expected - 1));
+                   }
+                 }
+                 const double energy = BartonBandis::strain_energy(p, sn_prev * L, 0.0);
+                 r.expected = work;
+                 r.measured = energy;
+                 r.error = std::max(worst, std::abs(energy / work - 1));
+               });
+}
+
+std::vector<CaseResult> rock_cases(const std::string&, const std::string&) {
+  return {r2_peak_strength(), r2_residual_strength(), r2_dilation(), r2_normal_closure()};
+}
+
+}  // namespace vorodec::verification
