@@ -66,7 +66,7 @@ TEST(LawRegistry, EveryLawDocumentsUnitsOfItsParameters) {
 // strain energy. Its spring then works from that origin.
 TEST(MohrCoulomb, ContactFoundOverlappingStartsWithZeroForce) {
   const MohrCoulomb::Props p{jkn * L, jks * L, 0.0, 0.0, 0.5, 0.5, 0.0};
-  auto st = MohrCoulomb::initial_state({1, L, false, -2e-6});
+  auto st = MohrCoulomb::initial_state(p, {1, L, false, -2e-6});
   EXPECT_EQ(MohrCoulomb::evaluate({-2e-6, 0.0, 0.0, L, 1e-7}, p, st).fn, 0.0);
   EXPECT_DOUBLE_EQ(MohrCoulomb::evaluate({-3e-6, -1e-6, 0.0, L, 1e-7}, p, st).fn, jkn * L * 1e-6);
 }

@@ -14,10 +14,32 @@ namespace vorodec::run {
 
 using model::Group;
 
+namespace {
+
+// The intact blocks cut by the joint sets.
+geometry::Tessellation cut_by_joint_sets(const io::ModelConfig& cfg,
+                                         const geometry::Tessellation& intact) {
+  std::vector<geometry::JointTrace> traces;
+  for (std::size_t i = 0; i < cfg.joint_sets.size(); ++i) {
+    const auto& set = cfg.joint_sets[i];
+    if (set.statistics) {
+      const auto lines = geometry::joint_set_traces(*set.statistics, cfg.tessellation.outline,
+                                                    static_cast<std::int32_t>(i), cfg.seed);
+      traces.insert(traces.end(), lines.begin(), lines.end());
+    }
+    traces.insert(traces.end(), set.fractures.begin(), set.fractures.end());
+  }
+  return geometry::cut_by_joints(intact, traces, cfg.tessellation);
+}
+
+}  // namespace
+
 geometry::Tessellation make_specimen(const io::ModelConfig& cfg) {
   if (cfg.specimen_file) return io::read_specimen(*cfg.specimen_file);
   try {
     if (cfg.grains) return geometry::tessellate_grains(cfg.tessellation, cfg.grains->settings);
+    if (!cfg.joint_sets.empty())
+      return cut_by_joint_sets(cfg, geometry::tessellate(cfg.tessellation));
     return geometry::tessellate(cfg.tessellation);
   } catch (const geometry::GeometryError& e) {
     throw io::ModelFileError(fmt::format("{}:{}: [specimen]: impossible geometry: {}",
@@ -30,6 +52,17 @@ std::string specimen_report(const io::ModelConfig& cfg, const geometry::Tessella
   if (cfg.specimen_file)
     text += fmt::format("specimen loaded from {}\n", cfg.specimen_file->string());
   text += geometry::format_report(t.report);
+  if (!cfg.joint_sets.empty()) {
+    std::vector<std::size_t> edges(cfg.joint_sets.size(), 0);
+    std::vector<double> length(cfg.joint_sets.size(), 0.0);
+    for (const auto& j : t.joint_edges) {
+      ++edges[static_cast<std::size_t>(j.set)];
+      length[static_cast<std::size_t>(j.set)] += j.length;
+    }
+    for (std::size_t i = 0; i < edges.size(); ++i)
+      text += fmt::format("  joint set {}: {} block pairs, {:.4g} m of joint ({})\n",
+                          cfg.joint_sets[i].name, edges[i], length[i], cfg.joint_sets[i].law.name);
+  }
   if (cfg.grains) {
     double total = 0;
     for (const double a : t.mineral_area) total += a;
@@ -163,6 +196,11 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
     table.mix = {static_cast<int>(groups.size() - 1), cfg.joint_mix->fraction,
                  cfg.seed ^ 0x9e3779b97f4a7c15ull};
   }
+  for (const auto& set : cfg.joint_sets)
+    groups.push_back(laws::find_law(set.law.name)->make(set.law.params, cfg.seed));
+  const int first_set = static_cast<int>(groups.size() - cfg.joint_sets.size());
+  for (const auto& j : tess.joint_edges)
+    table.joints[solver::LawTable::joint_key(j.a, j.b)] = first_set + j.set;
   const auto set = [&](Group a, Group b, int law) {
     table.law[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = law;
     table.law[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = law;

@@ -47,30 +47,6 @@ model::Distribution read_property(TomlSection& sec, const laws::ParamSpec& spec)
   return model::Distribution::constant(v);
 }
 
-LawChoice read_law(TomlSection& sec, const std::string& default_law) {
-  LawChoice choice;
-  choice.name = sec.string("law", &default_law);
-  const laws::LawInfo* info = laws::find_law(choice.name);
-  if (!info) {
-    std::string names;
-    for (const auto& l : laws::law_registry()) names += fmt::format(" '{}'", l.name);
-    sec.fail("law", fmt::format("unknown contact law '{}' (known:{})", choice.name, names));
-  }
-  for (const laws::ParamSpec& spec : info->params) {
-    sec.node(spec.key);  // a known key of this law, even where absent (for "did you mean")
-    if (sec.has(spec.key)) {
-      choice.params.emplace(std::string(spec.key), read_property(sec, spec));
-    } else if (!std::isnan(spec.default_value)) {
-      choice.params.emplace(std::string(spec.key),
-                            model::Distribution::constant(spec.default_value));
-    } else if (!spec.optional) {
-      sec.fail(spec.key,
-               fmt::format("required by law '{}' ({}, {})", choice.name, spec.doc, spec.unit));
-    }
-  }
-  return choice;
-}
-
 std::size_t mineral_index(TomlSection& sec, std::string_view key, std::string_view name,
                           const std::vector<Mineral>& minerals) {
   for (std::size_t m = 0; m < minerals.size(); ++m)
@@ -187,6 +163,30 @@ void read_platens(TomlSection p, const laws::NominalStiffness& joint_springs, Mo
 }
 
 }  // namespace
+
+LawChoice read_law(TomlSection& sec, const std::string& default_law) {
+  LawChoice choice;
+  choice.name = sec.string("law", &default_law);
+  const laws::LawInfo* info = laws::find_law(choice.name);
+  if (!info) {
+    std::string names;
+    for (const auto& l : laws::law_registry()) names += fmt::format(" '{}'", l.name);
+    sec.fail("law", fmt::format("unknown contact law '{}' (known:{})", choice.name, names));
+  }
+  for (const laws::ParamSpec& spec : info->params) {
+    sec.node(spec.key);  // a known key of this law, even where absent (for "did you mean")
+    if (sec.has(spec.key)) {
+      choice.params.emplace(std::string(spec.key), read_property(sec, spec));
+    } else if (!std::isnan(spec.default_value)) {
+      choice.params.emplace(std::string(spec.key),
+                            model::Distribution::constant(spec.default_value));
+    } else if (!spec.optional) {
+      sec.fail(spec.key,
+               fmt::format("required by law '{}' ({}, {})", choice.name, spec.doc, spec.unit));
+    }
+  }
+  return choice;
+}
 
 laws::NominalStiffness nominal_stiffness(const LawChoice& c) {
   return laws::find_law(c.name)->nominal_stiffness(c.params);

@@ -62,6 +62,7 @@ void read_root(const toml::table& root, ModelConfig& cfg, const ModelFileKeys& k
   cfg.tessellation.seed = cfg.seed;
   read_blocks_table(top, cfg);
   read_joints_table(top, cfg);
+  read_joint_set_tables(top, cfg);
   read_platens_table(top, cfg);
   read_contact_table(top, cfg);
   read_solver_table(top, cfg);

@@ -31,6 +31,9 @@ inline bool file_exists(const std::filesystem::path& p) {
   return std::filesystem::exists(p, ec);
 }
 
+// The law a table chooses (`law`, default `default_law`) and that law's keys from the same table.
+LawChoice read_law(TomlSection& sec, const std::string& default_law);
+
 // The joints' law's nominal normal and shear springs (platen and quiet-boundary defaults).
 laws::NominalStiffness nominal_stiffness(const LawChoice& c);
 
@@ -46,6 +49,8 @@ TableReader read_solver_table, read_loading_table, read_output_table;
 // stage_keys.cpp: the load path. The stage modes' own top-level tables (such as [corrosion]), then
 // a driver's table (such as [shpb]) or else the [[stage]] tables.
 void read_load_path(TomlSection& top, ModelConfig& cfg, const ModelFileKeys& keys);
+// joint_set_keys.cpp: the [[joint_set]] tables and the fracture files they name.
+TableReader read_joint_set_tables;
 // dynamics_keys.cpp: [quiet_boundary].
 TableReader read_quiet_boundary_table;
 

@@ -42,6 +42,9 @@ CaseResult r2_peak_strength();
 CaseResult r2_residual_strength();
 CaseResult r2_dilation();
 CaseResult r2_normal_closure();
+// J0: a persistent joint through a Voronoi specimen: the length of the block pairs it separates
+// against the line's chord (fast: part of the unit tests too).
+CaseResult j0_joint_length(double dip_deg);
 // The rock-mass cases (R, J), run by `vorodec_verify --rock-only` into their own section.
 std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::string& binary);
 

@@ -1,11 +1,15 @@
 // R2: one Barton-Bandis contact in direct shear under a constant normal stress, and in normal
 // closure (docs/theory.md §6.6). The normal stress is held by moving the gap each step.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
 
 #include "cases.hpp"
+#include "model_runs.hpp"
+#include "vorodec/geometry/joints.hpp"
 #include "vorodec/laws/barton_bandis.hpp"
 
 namespace vorodec::verification {
@@ -135,8 +139,72 @@ CaseResult r2_normal_closure() {
                });
 }
 
-std::vector<CaseResult> rock_cases(const std::string&, const std::string&) {
-  return {r2_peak_strength(), r2_residual_strength(), r2_dilation(), r2_normal_closure()};
+CaseResult j0_joint_length(double dip_deg) {
+  return timed(
+      {"J0",
+       fmt::format("one persistent joint dipping {:g} deg through a 50 x 100 mm Voronoi specimen "
+                   "(1302 blocks): length of the block pairs it separates",
+                   dip_deg),
+       "chord of the line across the rectangle", 0, 0, 0, 5e-3,
+       "vertices within 0.2 x the mean block edge snapped onto the joint"},
+      [&](CaseResult& r) {
+        geometry::TessellationSettings s;
+        s.outline = {geometry::OutlineKind::rectangle, 0.05, 0.1, 0, 0};
+        s.block_count = 1302;
+        s.seed = 42;
+        s.lloyd_iterations = 2;
+        s.min_edge_length = 2.5e-4;
+        const auto intact = geometry::tessellate(s);
+        geometry::JointSetGeometry g;
+        g.dip_deg = dip_deg;
+        g.spacing = 1.0;
+        g.origin = {0.025, 0.05};
+        const auto traces = geometry::joint_set_traces(g, s.outline, 0, s.seed);
+        const auto cut = geometry::cut_by_joints(intact, traces, s);
+        for (const auto& j : cut.joint_edges) r.measured += j.length;
+        const double t = std::tan(dip_deg * M_PI / 180);
+        // The line y - 0.05 = t (x - 0.025) across [0, 0.05] x [0, 0.1].
+        const double half_x = std::min(0.025, 0.05 / std::abs(t));
+        r.expected = 2 * half_x * std::sqrt(1 + t * t);
+        r.error = std::abs(r.measured / r.expected - 1);
+      });
+}
+
+// J1: models/triaxial_jointed_marble.toml at joint dips 35-60 deg against Jaeger's single plane of
+// weakness (clean joint: sigma_1 - sigma_3 = 2 sigma_3 tan(phi) / ((1 - tan(phi) cot(b)) sin(2b))).
+std::vector<CaseResult> j1_single_plane_of_weakness(const std::string& source_dir,
+                                                    const std::string& binary) {
+  const std::filesystem::path model =
+      std::filesystem::path(source_dir) / "models" / "triaxial_jointed_marble.toml";
+  const double s3 = 5e6, tan_phi = std::tan(M_PI / 6);
+  std::vector<CaseResult> rows;
+  for (const double dip : {35.0, 40.0, 45.0, 50.0, 55.0, 60.0}) {
+    const double b = dip * M_PI / 180;
+    const double jaeger = 2 * s3 * tan_phi / ((1 - tan_phi / std::tan(b)) * std::sin(2 * b));
+    const auto out =
+        std::filesystem::temp_directory_path() / fmt::format("vorodec_j1_dip{:g}", dip);
+    const ModelRun run =
+        run_model(binary, model, out, fmt::format("--set joint_set[0].dip={:g}", dip));
+    rows.push_back(relative(
+        "J1",
+        fmt::format("marble with one clean joint (phi_w 30 deg) dipping {:g} deg, sigma_3 5 MPa: "
+                    "sigma_1 - sigma_3 at the peak",
+                    dip),
+        "Jaeger's single plane of weakness [Jaeger1960]", jaeger,
+        json_number(run.summary, "peak_stress_Pa") - s3, 0.05,
+        fmt::format("models/triaxial_jointed_marble.toml --set joint_set[0].dip={:g}; exit {}", dip,
+                    run.exit_code),
+        run.seconds));
+  }
+  return rows;
+}
+
+std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::string& binary) {
+  std::vector<CaseResult> rows{r2_peak_strength(), r2_residual_strength(), r2_dilation(),
+                               r2_normal_closure()};
+  for (const double dip : {0.0, 30.0, 50.0, 60.0, 75.0, 90.0}) rows.push_back(j0_joint_length(dip));
+  for (auto& r : j1_single_plane_of_weakness(source_dir, binary)) rows.push_back(std::move(r));
+  return rows;
 }
 
 }  // namespace vorodec::verification

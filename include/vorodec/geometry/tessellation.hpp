@@ -54,6 +54,14 @@ struct Tessellation {
   std::vector<std::int32_t> block_grain;
   std::vector<std::int32_t> grain_mineral;
   std::vector<double> mineral_area;
+  // Jointed specimens only (geometry/joints.hpp): each block pair a < b whose shared edge lies on
+  // a joint trace, with the trace's set and the edge's length (m).
+  struct JointEdge {
+    std::uint32_t a = 0, b = 0;
+    std::int32_t set = 0;
+    double length = 0;
+  };
+  std::vector<JointEdge> joint_edges;
 };
 
 class GeometryError : public std::runtime_error {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "vorodec/geometry/grains.hpp"
+#include "vorodec/geometry/joints.hpp"
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/io/input_error.hpp"
 #include "vorodec/laws/contact_law.hpp"
@@ -117,6 +118,14 @@ struct ModelConfig {
   };
   std::optional<JointMix> joint_mix;
   std::optional<GrainConfig> grains;  // grain-based specimen
+  // [[joint_set]]: joint sets and fractures cutting a Voronoi specimen, each with its own law.
+  struct JointSet {
+    std::string name;
+    std::optional<geometry::JointSetGeometry> statistics;  // dip, spacing, trace, gap, ...
+    std::vector<geometry::JointTrace> fractures;          // from the set's or another set's file
+    LawChoice law;
+  };
+  std::vector<JointSet> joint_sets;
   // The top-level tables the stage modes and drivers read themselves ([corrosion], [shpb]), by
   // name: what each one's reader made of it (StageModeKeys, DriverKeys).
   std::map<std::string, std::shared_ptr<const loading::ExtensionSettings>, std::less<>> tables;

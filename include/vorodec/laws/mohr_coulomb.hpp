@@ -36,7 +36,15 @@ struct MohrCoulomb {
 
   static Params params_from(const LawParams& p);
   static Props sample(const Params& p, std::uint64_t seed, const NewContact& c);
-  static State initial_state(const NewContact& c) { return {0.0, c.spring_origin, !c.bonded}; }
+  // A bond with no tension, no cohesion and no friction to lose has nothing to fail: the contact
+  // is frictional from the start (no crack event when it first opens or slips; a joint set's
+  // clean joints).
+  static State initial_state(const Props& p, const NewContact& c) {
+    const CoulombStrength& s = p.strength;
+    const bool bond =
+        c.bonded && (s.tension_force > 0 || s.cohesion_force > 0 || s.tan_phi != s.tan_phi_res);
+    return {0.0, c.spring_origin, !bond};
+  }
   static double max_stiffness(const Props& p) { return std::max(p.kn, p.ks); }
   static double strain_energy(const Props& p, double fn, double fs) {
     return 0.5 * (fn * fn / p.kn + (p.ks > 0.0 ? fs * fs / p.ks : 0.0));

@@ -3,6 +3,7 @@
 // of persisting contacts, drops separated ones (never intact bonded ones), creates new ones.
 #include <array>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "vorodec/laws/contact_law.hpp"
@@ -45,9 +46,20 @@ struct LawTable {
     double fraction = 0;
     std::uint64_t seed = 0;
   } mix;
+  // Jointed specimens: a block pair (key joint_key(a, b)) whose shared edge lies on a joint takes
+  // its set's law group.
+  std::unordered_map<std::uint64_t, int> joints;
+  static std::uint64_t joint_key(std::uint32_t a, std::uint32_t b) {
+    return std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+  }
   // The law group of blocks a and b.
   int for_blocks(const model::Blocks& bl, std::uint32_t a, std::uint32_t b) const {
     const int l = for_pair(bl.group[a], bl.group[b]);
+    if (!joints.empty() && bl.group[a] == model::Group::specimen &&
+        bl.group[b] == model::Group::specimen) {
+      const auto it = joints.find(joint_key(a, b));
+      return it == joints.end() ? l : it->second;
+    }
     if (mix.law >= 0 && bl.group[a] == model::Group::specimen &&
         bl.group[b] == model::Group::specimen)
       return model::keyed_uniform(mix.seed, std::min(a, b), std::max(a, b)) < mix.fraction ? mix.law
