@@ -595,3 +595,67 @@ TEST(BadInput, IncidentWaveGivenTwiceOrNotAtAllIsRejected) {
   EXPECT_TRUE(rejected("shpb_wave_none", none, "shpb.striker_velocity", line_of(none, "[shpb]"),
                        "incident_particle_velocity"));
 }
+
+namespace {
+const char* joint_set = R"([[joint_set]]
+dip = 30
+spacing = 0.005
+friction = 30
+)";
+
+fs::path write_fractures(const std::string& name, const std::string& rows) {
+  const fs::path file = fs::temp_directory_path() / "vorodec_bad_input" / (name + ".csv");
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << rows;
+  return file;
+}
+
+std::string fracture_model(const fs::path& csv) {
+  return std::string(good_model) + "[[joint_set]]\nfile = \"" + csv.string() +
+         "\"\nfriction = 30\n";
+}
+}  // namespace
+
+TEST(BadInput, JointSetSpacingOfZeroIsRejected) {
+  EXPECT_TRUE(
+      rejected("joint_spacing",
+               std::string(good_model) + replace(joint_set, "spacing = 0.005", "spacing = 0"),
+               "joint_set[0].spacing", 19, "must be > 0"));
+}
+
+TEST(BadInput, JointSetOriginOutsideTheSpecimenIsRejected) {
+  EXPECT_TRUE(rejected("joint_origin",
+                       std::string(good_model) + joint_set + "origin = [0.5, 0.01]\n",
+                       "joint_set[0].origin", 21, "bounding box"));
+}
+
+TEST(BadInput, JointSetWithATraceButNoGapIsRejected) {
+  EXPECT_TRUE(rejected("joint_gap", std::string(good_model) + joint_set + "trace = 0.01\n",
+                       "joint_set[0].gap", 17, "required"));
+}
+
+TEST(BadInput, FractureFileWithABadRowIsRejectedWithItsLine) {
+  const fs::path csv =
+      write_fractures("bad_row", "x1,y1,x2,y2\n0,0.01,0.02,0.03\n0,0.02,abc,0.03\n");
+  const Outcome o = run_capture("check " + write_model("bad_row", fracture_model(csv)).string());
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find(csv.string() + ":3:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("'abc'"), std::string::npos) << o.output;
+}
+
+TEST(BadInput, FractureOutsideTheSpecimenIsRejectedWithItsLine) {
+  const fs::path csv = write_fractures("outside", "x1,y1,x2,y2\n0.5,0.5,0.6,0.7\n");
+  const Outcome o = run_capture("check " + write_model("outside", fracture_model(csv)).string());
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find(csv.string() + ":2:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("outside the specimen"), std::string::npos) << o.output;
+}
+
+TEST(BadInput, FractureRowNamingAnUnknownSetIsRejected) {
+  const fs::path csv = write_fractures("unknown_set", "x1,y1,x2,y2,set\n0,0.01,0.02,0.03,faults\n");
+  const Outcome o =
+      run_capture("check " + write_model("unknown_set", fracture_model(csv)).string());
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find(csv.string() + ":2:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("'faults'"), std::string::npos) << o.output;
+}

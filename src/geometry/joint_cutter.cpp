@@ -76,12 +76,16 @@ bool crossing(const Polygon& poly, Point n, double offset, double tolerance, dou
               Crossing& c) {
   int found = 0;
   const std::size_t m = poly.size();
+  // A run of corners on the line may cross at either end: [start corner, end corner].
+  std::size_t run_start[2] = {0, 0};
+  bool run[2] = {false, false};
   for (std::size_t i = 0; i < m; ++i) {
     const Point u = poly[i], v = poly[(i + 1) % m];
     const double su = dot(n, u) - offset, sv = dot(n, v) - offset;
     const bool u_in = su < -tolerance, v_in = sv < -tolerance;
     const bool u_out = su > tolerance, v_out = sv > tolerance;
     Point p;
+    std::size_t start = i;
     if ((u_in && v_out) || (u_out && v_in)) {
       p = u + su / (su - sv) * (v - u);
       if (detail::length(p, u) < snap)
@@ -92,18 +96,33 @@ bool crossing(const Polygon& poly, Point n, double offset, double tolerance, dou
       // u ends a run of corners on the line: a crossing if the corners before the run and after
       // it lie either side.
       double sw = 0;
-      for (std::size_t k = 1; k < m && std::abs(sw) <= tolerance; ++k)
+      for (std::size_t k = 1; k < m && std::abs(sw) <= tolerance; ++k) {
         sw = dot(n, poly[(i + m - k) % m]) - offset;
+        if (std::abs(sw) <= tolerance) start = (i + m - k) % m;
+      }
       if (!((sw < -tolerance && v_out) || (sw > tolerance && v_in))) continue;
       p = u;
     } else {
       continue;
     }
     if (found == 2) return false;
+    run[found] = start != i;
+    run_start[found] = start;
     c.p[found] = p;
     c.edge[found++] = i;
   }
-  return found == 2 && detail::length(c.p[0], c.p[1]) > snap;
+  if (found != 2) return false;
+  // The chord runs from the run's corner nearest the other crossing: the run stays on one piece's
+  // side instead of folding back over the chord.
+  for (int k = 0; k < 2; ++k) {
+    if (!run[k]) continue;
+    const Point first = poly[run_start[k]], other = c.p[1 - k];
+    if (detail::length(first, other) < detail::length(c.p[k], other)) {
+      c.p[k] = first;
+      c.edge[k] = (run_start[k] + m - 1) % m;
+    }
+  }
+  return detail::length(c.p[0], c.p[1]) > snap;
 }
 
 // The polygon from crossing `from` to crossing `to` along its corners, without repeated points.
@@ -207,8 +226,11 @@ Tessellation cut_by_joints(const Tessellation& intact, std::span<const JointTrac
   std::vector<Point> vertices = intact.vertices;
   snap_to_traces(vertices, intact.blocks, traces, 0.2 * intact.report.edge_mean);
   const double snap = 1e3 * tolerance;
+  // A small block with every corner near a joint lies flat on it after snapping: it goes, and
+  // its neighbours meet on the joint.
   std::vector<Polygon> cells;
   for (const auto& b : intact.blocks) {
+    if (detail::signed_area(vertices, b) <= tolerance * tolerance) continue;
     Polygon p;
     for (const auto v : b) p.push_back(vertices[v]);
     cells.push_back(std::move(p));
@@ -255,7 +277,8 @@ Tessellation cut_by_joints(const Tessellation& intact, std::span<const JointTrac
         // On the trace, and between blocks on either side of it (not an intact edge near it).
         const Point n{c.a.y - c.b.y, c.b.x - c.a.x};
         if (!on_chord(pu, pv, c, label) || dot(n, ca - c.a) * dot(n, cb - c.a) >= 0) continue;
-        const auto blocks = std::minmax(it->second, bi);
+        const std::pair<std::uint32_t, std::uint32_t> blocks{std::min(it->second, bi),
+                                                             std::max(it->second, bi)};
         const auto [p, added] = pair_index.emplace(blocks, out.joint_edges.size());
         if (added) out.joint_edges.push_back({blocks.first, blocks.second, c.set, 0.0});
         out.joint_edges[p->second].length += detail::length(pu, pv);

@@ -173,7 +173,8 @@ void read_joint_set_tables(TomlSection& top, ModelConfig& cfg) {
     set.law = read_law(sec, "mohr_coulomb");
   }
   for (std::size_t i = 0; i < list.size(); ++i) {
-    if (!cfg.joint_sets[i].statistics && cfg.joint_sets[i].fractures.empty())
+    if (!cfg.joint_sets[i].statistics && cfg.joint_sets[i].fractures.empty() &&
+        !tables[i].has("file"))
       tables[i].fail("dip",
                      "a joint set needs 'dip' and 'spacing', or a fracture 'file' (or "
                      "rows of another set's file that name it)");

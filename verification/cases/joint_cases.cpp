@@ -145,7 +145,7 @@ CaseResult j0_joint_length(double dip_deg) {
        fmt::format("one persistent joint dipping {:g} deg through a 50 x 100 mm Voronoi specimen "
                    "(1302 blocks): length of the block pairs it separates",
                    dip_deg),
-       "chord of the line across the rectangle", 0, 0, 0, 5e-3,
+       "chord of the line across the rectangle", 0, 0, 0, 1e-3,
        "vertices within 0.2 x the mean block edge snapped onto the joint"},
       [&](CaseResult& r) {
         geometry::TessellationSettings s;
