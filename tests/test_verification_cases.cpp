@@ -48,6 +48,9 @@ TEST(Verification, R2RoughJointDilatesAtHalfItsRoughnessAngle) {
 TEST(Verification, R2RoughJointClosesOnTheBandisHyperbola) {
   EXPECT_TRUE(passes(r2_normal_closure()));
 }
+TEST(Verification, R3RoofWedgeFallsBelowItsLimitFrictionAndStaysAbove) {
+  for (const auto& r : r3_roof_wedge()) EXPECT_TRUE(passes(r));
+}
 TEST(Verification, J0JointSeparatesBlockPairsAlongItsWholeChord) {
   for (const double dip : {0.0, 30.0, 60.0, 90.0}) EXPECT_TRUE(passes(j0_joint_length(dip)));
 }

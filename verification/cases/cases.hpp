@@ -45,6 +45,9 @@ CaseResult r2_normal_closure();
 // J0: a persistent joint through a Voronoi specimen: the length of the block pairs it separates
 // against the line's chord (fast: part of the unit tests too).
 CaseResult j0_joint_length(double dip_deg);
+// R3: a roof wedge clamped between two abutments under gravity, 1 deg of friction either side of
+// its limit equilibrium (fast: part of the unit tests too): expected 1 = falls, 0 = stays.
+std::vector<CaseResult> r3_roof_wedge();
 // The rock-mass cases (R, J), run by `vorodec_verify --rock-only` into their own section.
 std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::string& binary);
 

@@ -9,6 +9,7 @@
 
 #include "cases.hpp"
 #include "model_runs.hpp"
+#include "scenes.hpp"
 #include "vorodec/geometry/joints.hpp"
 #include "vorodec/laws/barton_bandis.hpp"
 
@@ -199,10 +200,102 @@ std::vector<CaseResult> j1_single_plane_of_weakness(const std::string& source_di
   return rows;
 }
 
+namespace {
+
+// A symmetric roof wedge (apex up, half apex angle alpha, base 2 m at the opening) between two
+// fixed abutments that clamp it: each moved into the wedge by `clamp` m. The joints are stiff in
+// shear, so the clamp hardly relaxes as the wedge settles (with soft joints it does: the roof
+// wedge's relaxation analysis in rock-engineering texts). Returns the wedge's
+// drop (m) after `seconds` under gravity, and the clamping normal force per face (N per m) and
+// weight (N per m) it started with.
+struct WedgeRun {
+  double drop, normal_force, weight;
+};
+WedgeRun roof_wedge(double alpha_deg, double friction_deg, double clamp, double seconds) {
+  const double alpha = alpha_deg * M_PI / 180, half = 1.0, h = half / std::tan(alpha);
+  const double far = 3.0, rho = 2600, g = 9.81;
+  model::Model m;
+  m.rounding_length = 1e-3;
+  const double dx = clamp / std::cos(alpha);  // horizontal shift giving `clamp` normal overlap
+  model::add_block(m, std::vector<model::Point>{{-half, 0}, {half, 0}, {0, h}}, rho,
+                   model::Group::specimen);
+  model::add_block(m,
+                   std::vector<model::Point>{
+                       {-half - far + dx, 0}, {-half + dx, 0}, {dx, h}, {-half - far + dx, h}},
+                   rho, model::Group::bottom_platen);
+  model::add_block(m,
+                   std::vector<model::Point>{
+                       {half - dx, 0}, {half + far - dx, 0}, {half + far - dx, h}, {-dx, h}},
+                   rho, model::Group::top_platen);
+  solver::SolverSettings s;
+  s.local_damping = 0.8;
+  s.safety_factor = 0.5;
+  s.gravity = {0, -g};
+  auto solver = make_solver(m, "mohr_coulomb",
+                            params({{"jkn", 1e12},
+                                    {"jks", 1e13},
+                                    {"friction", friction_deg},
+                                    {"tension", 0},
+                                    {"cohesion", 0},
+                                    {"dilation", 0},
+                                    {"residual_friction", friction_deg}}),
+                            s);
+  const double y0 = m.blocks.y[0];
+  solver->step();  // the clamping's contact forces
+  double normal = 0;
+  for (const auto& c : m.contacts) normal += c.fn;
+  while (solver->time() < seconds) solver->step();
+  return {y0 - m.blocks.y[0], 0.5 * normal, m.blocks.gravity_mass[0] * g};
+}
+
+}  // namespace
+
+// R3: the wedge's limit friction angle from its starting clamp and weight,
+// sin(phi - alpha) = W cos(phi) / (2 N) [vertical equilibrium with both faces at their friction
+// limit], solved by bisection; the wedge run 1 deg either side of it must stay and fall.
+std::vector<CaseResult> r3_roof_wedge() {
+  const double alpha = 20, clamp = 2e-7, seconds = 0.3, fall = 1e-3;
+  const auto t0 = std::chrono::steady_clock::now();
+  const WedgeRun start = roof_wedge(alpha, 45, clamp, 0.0);
+  double lo = alpha, hi = 89;
+  for (int i = 0; i < 100; ++i) {
+    const double phi = 0.5 * (lo + hi), r = phi * M_PI / 180;
+    (std::sin(r - alpha * M_PI / 180) < start.weight * std::cos(r) / (2 * start.normal_force)
+         ? lo
+         : hi) = phi;
+  }
+  const double critical = 0.5 * (lo + hi);
+  std::vector<CaseResult> rows;
+  for (const double offset : {-1.0, 1.0}) {
+    const WedgeRun run = roof_wedge(alpha, critical + offset, clamp, seconds);
+    const bool falls = offset < 0;
+    CaseResult r{"R3",
+                 fmt::format("roof wedge, half apex angle {:g} deg, clamped by N = {:.3g} N/m per "
+                             "face (W = {:.3g} N/m): friction {:.2f} deg {}",
+                             alpha, start.normal_force, start.weight, critical + offset,
+                             falls ? "(1 deg below the limit) falls" : "(1 deg above) stays"),
+                 fmt::format("limit equilibrium: phi_crit = {:.2f} deg; judged by the drop after "
+                             "{:g} s against {:g} m",
+                             critical, seconds, fall),
+                 falls ? 1.0 : 0.0,
+                 run.drop > fall ? 1.0 : 0.0,
+                 0,
+                 0,
+                 "local damping 0.8, jkn 1000 GPa/m, jks 10,000 GPa/m (stiff: the clamp relaxes by "
+                 "about 4 % as the wedge settles), rounding 1 mm"};
+    r.error = r.measured == r.expected ? 0.0 : 1.0;
+    r.settings += fmt::format("; drop {:.3g} m", run.drop);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 2;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
 std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::string& binary) {
   std::vector<CaseResult> rows{r2_peak_strength(), r2_residual_strength(), r2_dilation(),
                                r2_normal_closure()};
   for (const double dip : {0.0, 30.0, 50.0, 60.0, 75.0, 90.0}) rows.push_back(j0_joint_length(dip));
+  for (auto& r : r3_roof_wedge()) rows.push_back(std::move(r));
   for (auto& r : j1_single_plane_of_weakness(source_dir, binary)) rows.push_back(std::move(r));
   return rows;
 }
