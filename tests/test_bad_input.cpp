@@ -659,3 +659,25 @@ TEST(BadInput, FractureRowNamingAnUnknownSetIsRejected) {
   EXPECT_NE(o.output.find(csv.string() + ":2:"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("'faults'"), std::string::npos) << o.output;
 }
+
+namespace {
+std::string excavation(const std::string& shape) {
+  return std::string(good_model) + "[[stage]]\nname = \"dig\"\ncontrol = \"excavation\"\n" + shape +
+         "\ntarget_stress = 1e6\nend_time = 0.01\n";
+}
+}  // namespace
+
+TEST(BadInput, ExcavationOutsideTheSpecimenIsRejected) {
+  EXPECT_TRUE(rejected("excavation_outside",
+                       excavation("circle = { centre = [0.01, 0.02], radius = 0.05 }"),
+                       "stage[1].circle", 20, "inside the specimen"));
+}
+
+TEST(BadInput, OverlappingExcavationsAreRejected) {
+  const std::string first = excavation("circle = { centre = [0.01, 0.02], radius = 0.004 }");
+  const std::string both = first +
+                           "[[stage]]\nname = \"again\"\ncontrol = \"excavation\"\n"
+                           "polygon = [[0.008, 0.018], [0.015, 0.018], [0.015, 0.03]]\n"
+                           "target_stress = 1e6\nend_time = 0.01\n";
+  EXPECT_TRUE(rejected("excavation_overlap", both, "stage[2].polygon", 26, "overlaps stage 'dig'"));
+}

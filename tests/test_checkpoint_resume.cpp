@@ -105,6 +105,12 @@ TEST(Resume, PressureBarTestStoppedMidImpactMatchesTheUninterruptedRun) {
   EXPECT_NO_FATAL_FAILURE(expect_resume_matches("shpb", kModels + "shpb_small.toml", {300, 700}));
 }
 
+TEST(Resume, ExcavationStoppedBeforeAndAfterTheBlocksGoMatchesTheUninterruptedRun) {
+  // tunnel_small: in-situ stress for 1000 steps, then the excavation (3002 steps in all).
+  EXPECT_NO_FATAL_FAILURE(
+      expect_resume_matches("excavation", kModels + "tunnel_small.toml", {900, 1500, 2500}));
+}
+
 TEST(Resume, DeformableRunMatchesTheUninterruptedRun) {
   EXPECT_NO_FATAL_FAILURE(
       expect_resume_matches("deformable", kModels + "deformable_small.toml", {1200, 3000}));

@@ -115,6 +115,7 @@ TEST(PlugInKeys, ADriversTableIsItsLoadPathAndReplacesTheBaseStages) {
 
 TEST(PlugInKeys, TheRegisteredModesAndDriversAreTheOnesARunReads) {
   const std::string e = error_of(write("run.toml", "[[stage]]\ncontrol = \"relax\"\n"), nullptr);
-  EXPECT_NE(e.find("\"creep\", \"corrosion\" or \"cyclic\" (got \"relax\")"), std::string::npos)
+  EXPECT_NE(e.find("\"creep\", \"corrosion\", \"excavation\" or \"cyclic\" (got \"relax\")"),
+            std::string::npos)
       << e;
 }

@@ -4,6 +4,7 @@
 
 #include "corrosion_mode.hpp"
 #include "creep_mode.hpp"
+#include "excavation_mode.hpp"
 #include "stage_mode.hpp"
 
 namespace vorodec::run {
@@ -25,6 +26,7 @@ std::unique_ptr<StageMode> make(const DriverContext& c) {
 constexpr std::array kModes{
     ModeRow{CreepMode::keys, make<CreepMode>},
     ModeRow{CorrosionMode::keys, make<CorrosionMode>},
+    ModeRow{ExcavationMode::keys, make<ExcavationMode>},
 };
 
 constexpr auto kKeys = [] {

@@ -77,6 +77,7 @@ void validate(const VtkFrame& f) {
     require_size(f.block_failed_fraction.size(), nb, "block_failed_fraction");
   if (!f.block_grain.empty()) require_size(f.block_grain.size(), nb, "block_grain");
   if (!f.block_mineral.empty()) require_size(f.block_mineral.size(), nb, "block_mineral");
+  if (!f.block_hidden.empty()) require_size(f.block_hidden.size(), nb, "block_hidden");
   const std::size_t nc = f.contact_point.size();
   require_size(f.contact_a.size(), nc, "contact_a");
   require_size(f.contact_b.size(), nc, "contact_b");
@@ -149,14 +150,27 @@ void add_time(vtkDataObject* pd, double time) {
   pd->GetFieldData()->AddArray(t);
 }
 
+// The entries of per-block `v` for the blocks drawn.
+template <class T>
+std::vector<T> drawn(const std::vector<T>& v, const std::vector<std::size_t>& kept) {
+  std::vector<T> out;
+  out.reserve(kept.size());
+  for (const std::size_t b : kept) out.push_back(v[b]);
+  return out;
+}
+
 vtkNew<vtkPolyData> blocks_polydata(const VtkFrame& f) {
   const std::size_t nb = f.block_id.size();
+  std::vector<std::size_t> kept;
+  for (std::size_t b = 0; b < nb; ++b)
+    if (f.block_hidden.empty() || !f.block_hidden[b]) kept.push_back(b);
   auto pts = make_points(f.block_points.size());
   for (std::size_t i = 0; i < f.block_points.size(); ++i) set_point(pts, i, f.block_points[i]);
   vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(static_cast<vtkIdType>(nb), static_cast<vtkIdType>(f.block_points.size()));
+  polys->AllocateExact(static_cast<vtkIdType>(kept.size()),
+                       static_cast<vtkIdType>(f.block_points.size()));
   std::vector<vtkIdType> ids;
-  for (std::size_t b = 0; b < nb; ++b) {
+  for (const std::size_t b : kept) {
     ids.clear();
     for (std::uint32_t k = f.block_offsets[b]; k < f.block_offsets[b + 1]; ++k) ids.push_back(k);
     polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
@@ -165,14 +179,14 @@ vtkNew<vtkPolyData> blocks_polydata(const VtkFrame& f) {
   pd->SetPoints(pts);
   pd->SetPolys(polys);
   auto* cd = pd->GetCellData();
-  cd->AddArray(int_array("id", f.block_id));
-  cd->AddArray(int_array("group", f.block_group));
-  cd->AddArray(vector_array("velocity", f.block_velocity));
-  cd->AddArray(vector_array("displacement", f.block_displacement));
+  cd->AddArray(int_array("id", drawn(f.block_id, kept)));
+  cd->AddArray(int_array("group", drawn(f.block_group, kept)));
+  cd->AddArray(vector_array("velocity", drawn(f.block_velocity, kept)));
+  cd->AddArray(vector_array("displacement", drawn(f.block_displacement, kept)));
   if (!f.block_failed_fraction.empty())
-    cd->AddArray(double_array("failed_fraction", f.block_failed_fraction));
-  if (!f.block_grain.empty()) cd->AddArray(int_array("grain", f.block_grain));
-  if (!f.block_mineral.empty()) cd->AddArray(int_array("mineral", f.block_mineral));
+    cd->AddArray(double_array("failed_fraction", drawn(f.block_failed_fraction, kept)));
+  if (!f.block_grain.empty()) cd->AddArray(int_array("grain", drawn(f.block_grain, kept)));
+  if (!f.block_mineral.empty()) cd->AddArray(int_array("mineral", drawn(f.block_mineral, kept)));
   add_time(pd, f.time);
   return pd;
 }

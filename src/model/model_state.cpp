@@ -22,6 +22,7 @@ void state(Archive& ar, M& m) {
   auto& b = m.blocks;
   ar(pod(b.x), pod(b.y), pod(b.theta), pod(b.vx), pod(b.vy), pod(b.omega), pod(b.mass),
      pod(b.inertia), pod(b.fx), pod(b.fy), pod(b.moment), pod(b.prescribed));
+  ar(pod(b.group));  // an excavation stage moves blocks to Group::excavated
   // The world arrays are those of the last step's start, which outputs read: saved, not redone.
   ar(pod(b.cos_t), pod(b.sin_t), pod(b.world), pod(b.kin));
   // Deformable blocks' corner arcs and edge constants follow their gridpoints.

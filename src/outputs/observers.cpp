@@ -195,6 +195,10 @@ io::VtkFrame make_frame(const RunView& v) {
     }
     f.block_id.push_back(static_cast<std::int32_t>(b));
     f.block_group.push_back(static_cast<std::int32_t>(bl.group[b]));
+    if (bl.group[b] == model::Group::excavated) {
+      f.block_hidden.resize(bl.size(), 0);
+      f.block_hidden[b] = 1;
+    }
     f.block_velocity.push_back({bl.vx[b], bl.vy[b]});
     f.block_displacement.push_back({bl.x[b] - bl.x0[b], bl.y[b] - bl.y0[b]});
   }

@@ -295,7 +295,10 @@ struct NarrowPhase {
         const Contact& c = model.contacts[old_order[old_pos]];
         const BlockPair q = pair_of(c);
         if (inclusive ? q > p : q >= p) break;
-        if (c.bonded && c.state <= model::ContactState::slipping) {
+        // (Never across a pair that no longer interacts: a block an excavation removed.)
+        if (c.bonded && c.state <= model::ContactState::slipping &&
+            table.for_blocks(model.blocks, static_cast<std::uint32_t>(c.a),
+                             static_cast<std::uint32_t>(c.b)) >= 0) {
           out.result.push_back({c, {}});
           out.origin.push_back(static_cast<std::int64_t>(old_order[old_pos]));
           ++out.stats.kept;

@@ -38,6 +38,16 @@ void Solver::initialise() {
       }));
 }
 
+void Solver::remove_blocks(std::span<const std::uint32_t> blocks) {
+  auto& bl = model_.blocks;
+  for (const std::uint32_t b : blocks) {
+    bl.group[b] = model::Group::excavated;
+    bl.prescribed[b] = 1;
+    bl.vx[b] = bl.vy[b] = bl.omega[b] = 0.0;
+  }
+  detect(false);
+}
+
 void Solver::detect(bool bond_new) {
   detector_.detect(model_, laws_, bond_new);
   ++detections_;

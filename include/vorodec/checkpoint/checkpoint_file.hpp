@@ -17,7 +17,7 @@ namespace vorodec::checkpoint {
 
 // 3: the quasi-static driver saves its stage modes in turn (each its state and reports).
 // 4: zone stresses and strains saved as arrays by component; the zone-force scratch is not saved.
-inline constexpr std::uint32_t kFormat = 4;
+inline constexpr std::uint32_t kFormat = 5;
 
 struct Header {
   std::string vorodec_version;

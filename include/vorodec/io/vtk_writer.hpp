@@ -36,6 +36,8 @@ struct VtkFrame {
   std::vector<double> block_failed_fraction;        // per block, or empty: not written
   // Grain-based specimens: grain and mineral index per block (-1 platens), or empty.
   std::vector<std::int32_t> block_grain, block_mineral;
+  // Optional, per block: 1 leaves it out of the file (a block an excavation removed).
+  std::vector<std::uint8_t> block_hidden;
   // Contacts as line segments from block A's centroid to block B's centroid through the contact
   // point.
   std::vector<geometry::Point> contact_point;         // m

@@ -19,9 +19,11 @@ enum class Group : std::int32_t {
   bottom_platen = 1,
   top_platen = 2,
   incident_bar = 3,
-  transmitted_bar = 4
+  transmitted_bar = 4,
+  // Removed by an excavation stage: held still, in contact with nothing, not drawn.
+  excavated = 5
 };
-inline constexpr std::size_t kGroups = 5;
+inline constexpr std::size_t kGroups = 6;
 
 // Constants of a corner's rounded arc and of the block edge that starts at the corner.
 struct CornerShape {

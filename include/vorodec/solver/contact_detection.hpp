@@ -26,9 +26,8 @@ struct GrainLaws {
 // Which law group a pair of body groups uses (-1: the pair never interacts).
 struct LawTable {
   using Row = std::array<int, model::kGroups>;
-  std::array<Row, model::kGroups> law{Row{-1, -1, -1, -1, -1}, Row{-1, -1, -1, -1, -1},
-                                      Row{-1, -1, -1, -1, -1}, Row{-1, -1, -1, -1, -1},
-                                      Row{-1, -1, -1, -1, -1}};
+  static constexpr Row none{-1, -1, -1, -1, -1, -1};
+  std::array<Row, model::kGroups> law{none, none, none, none, none, none};
   // Which group pairs bond where they touch in the initial state (specimen-specimen; and
   // specimen-platen for bonded platens; within a block bar).
   std::array<std::array<bool, model::kGroups>, model::kGroups> bond{{{true}}};
