@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "cases.hpp"
@@ -292,8 +294,29 @@ std::vector<CaseResult> r3_roof_wedge() {
 }
 
 std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::string& binary) {
-  std::vector<CaseResult> rows{r2_peak_strength(), r2_residual_strength(), r2_dilation(),
-                               r2_normal_closure()};
+  std::vector<CaseResult> rows;
+  // R1's zone-size ladder: sigma_theta's error against wall time (verification/r1_kirsch_ladder),
+  // the finest the judged rows.
+  std::vector<std::vector<CaseResult>> ladder;
+  for (const double h : {0.2, 0.1, 0.05}) ladder.push_back(r1_kirsch(h));
+  {
+    std::ofstream csv(std::filesystem::path(source_dir) / "verification" / "r1_kirsch_ladder.csv");
+    const double order = std::log2(ladder[1][1].error / ladder[2][1].error);
+    csv << "parameter,value,error,seconds,default,order\n";
+    for (std::size_t k = 0; k < ladder.size(); ++k)
+      csv << fmt::format("{},{},{},{:.3f},{},{:.3f}\n", 0.2 / (1 << k), ladder[k][1].error,
+                         ladder[k][1].error, ladder[k][1].seconds, k + 1 == ladder.size() ? 1 : 0,
+                         order);
+  }
+  for (std::size_t k = 0; k + 1 < ladder.size(); ++k)
+    for (CaseResult r : ladder[k]) {
+      r.informational = true;  // the ladder's coarser rungs
+      rows.push_back(r);
+    }
+  for (const CaseResult& r : ladder.back()) rows.push_back(r);
+  for (CaseResult r :
+       {r2_peak_strength(), r2_residual_strength(), r2_dilation(), r2_normal_closure()})
+    rows.push_back(r);
   for (const double dip : {0.0, 30.0, 50.0, 60.0, 75.0, 90.0}) rows.push_back(j0_joint_length(dip));
   for (auto& r : r3_roof_wedge()) rows.push_back(std::move(r));
   for (auto& r : j1_single_plane_of_weakness(source_dir, binary)) rows.push_back(std::move(r));
