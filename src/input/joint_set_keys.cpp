@@ -1,40 +1,18 @@
 // [[joint_set]]: joint sets by their statistics, or fractures from a CSV file, each with a law.
 #include <fmt/format.h>
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <string_view>
 
 #include "sections.hpp"
+#include "vorodec/io/csv_fields.hpp"
 
 namespace vorodec::io {
 
 namespace {
 
 constexpr double kMaxJoints = 1e5;  // joint lines of one set across the specimen
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> fields_of(std::string_view line) {
-  std::vector<std::string_view> fields;
-  for (std::size_t start = 0;;) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) return fields;
-    start = comma + 1;
-  }
-}
-
-bool parse_double(std::string_view s, double& v) {
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  return ec == std::errc() && end == s.data() + s.size() && std::isfinite(v);
-}
 
 // The outline's bounding box: fractures must reach into it.
 geometry::Point box_size(const geometry::Outline& o) {
@@ -65,7 +43,7 @@ void read_fracture_file(const std::filesystem::path& file, std::int32_t own_set,
     ++line;
     const std::string_view t = trim(text);
     if (t.empty() || t.front() == '#') continue;
-    const auto f = fields_of(t);
+    const auto f = split_fields(t);
     if (!header) {
       header = true;
       with_set = f.size() == 5 && f[4] == "set";

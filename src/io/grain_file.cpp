@@ -3,38 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <string_view>
 
+#include "vorodec/io/csv_fields.hpp"
 #include "vorodec/io/input_error.hpp"
 
 namespace vorodec::io {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> fields;
-  for (std::size_t start = 0;;) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) return fields;
-    start = comma + 1;
-  }
-}
-
-bool parse_double(std::string_view s, double& v) {
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  return ec == std::errc() && end == s.data() + s.size() && std::isfinite(v);
-}
 
 double twice_area(const std::vector<geometry::Point>& p) {
   double a = 0;
@@ -86,7 +64,7 @@ std::vector<geometry::Grain> read_grain_file(const std::filesystem::path& file,
     ++line_no;
     const std::string_view row = trim(line);
     if (row.empty() || row.front() == '#') continue;
-    const auto f = split(row);
+    const auto f = split_fields(row);
     if (f.size() != 4)
       fail(line_no, fmt::format("expected 4 fields 'grain_id,mineral,x,y', got {}", f.size()));
     if (grains.empty() && f[0] == "grain_id") continue;  // header row

@@ -23,15 +23,6 @@ double rel(double measured, double expected) {
   return std::abs(measured - expected) / std::abs(expected);
 }
 
-// Fills the timing and relative error of a case computed by `body`.
-template <class F>
-CaseResult timed(CaseResult r, F body) {
-  const auto t0 = std::chrono::steady_clock::now();
-  body(r);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
-}
-
 double tand(double deg) {
   return std::tan(deg * std::numbers::pi / 180.0);
 }

@@ -2,6 +2,7 @@
 // Verification cases: each runs one scene against its analytic or published reference and
 // returns what it measured. The unit tests assert on them; verification/run.sh reports them.
 #include <array>
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -22,6 +23,15 @@ struct CaseResult {
   bool informational = false;  // a derived value with no published reference: reported, not judged
   bool pass() const { return informational || error <= tolerance; }
 };
+
+// Fills the wall time of a case computed by `body`.
+template <class F>
+CaseResult timed(CaseResult r, F body) {
+  const auto t0 = std::chrono::steady_clock::now();
+  body(r);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
 
 // Analytic cases (fast: part of the unit tests too).
 CaseResult a1_mass_properties();

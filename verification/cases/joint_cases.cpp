@@ -64,14 +64,6 @@ ShearRun shear_at(double sn, double slide, double du) {
 
 constexpr double stresses[] = {0.5e6, 1e6, 2e6, 5e6, 10e6, 20e6, 50e6};
 
-template <class F>
-CaseResult timed(CaseResult r, F body) {
-  const auto t0 = std::chrono::steady_clock::now();
-  body(r);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
-}
-
 }  // namespace
 
 CaseResult r2_peak_strength() {
