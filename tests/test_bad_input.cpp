@@ -681,3 +681,8 @@ TEST(BadInput, OverlappingExcavationsAreRejected) {
                            "target_stress = 1e6\nend_time = 0.01\n";
   EXPECT_TRUE(rejected("excavation_overlap", both, "stage[2].polygon", 26, "overlaps stage 'dig'"));
 }
+
+TEST(BadInput, ExcavationCircleWithoutCentreIsRejected) {
+  EXPECT_TRUE(rejected("excavation_centre", excavation("circle = { radius = 0.004 }"),
+                       "stage[1].circle.centre", 20, "required"));
+}

@@ -96,6 +96,7 @@ std::shared_ptr<const loading::ExtensionSettings> ExcavationMode::read_stage(
     if (!n->is_table()) sec.fail("circle", "must be { centre = [x, y], radius = r } (m)");
     io::TomlSection c(*n->as_table(), sec.key_path("circle"), sec.file());
     e->radius = c.positive("radius", laws::required);
+    if (!c.has("centre")) c.fail("centre", "required: the opening's centre [x, y] (m)");
     e->centre = point_of(c, *c.node("centre"), "centre");
     c.finish();
     for (const Point p : e->outline())
