@@ -142,11 +142,6 @@ Polygon piece(const Polygon& poly, const Crossing& c, int from, int to) {
   return out;
 }
 
-struct Chord {
-  Point a, b;
-  std::int32_t set;
-};
-
 // Moves the vertices within `snap` of a trace onto it, so that a joint passing near a block
 // corner stays straight and leaves no sliver: an interior vertex straight to it, an outline
 // vertex along the outline (a corner of the outline stays).
@@ -182,8 +177,8 @@ void snap_to_traces(std::vector<Point>& vertices, const detail::Blocks& blocks,
   }
 }
 
-// Whether edge (u, v) lies on the chord, within `tolerance`.
-bool on_chord(Point u, Point v, const Chord& c, double tolerance) {
+// Whether edge (u, v) lies on the trace, within `tolerance`.
+bool on_trace(Point u, Point v, const JointTrace& c, double tolerance) {
   const Point d0 = c.b - c.a;
   const double len = std::sqrt(dot(d0, d0));
   const Point d = (1.0 / len) * d0, n{-d.y, d.x};
@@ -258,10 +253,8 @@ Tessellation cut_by_joints(const Tessellation& intact, std::span<const JointTrac
   TessellationSettings s = settings;
   s.min_edge_length = 0;
   Tessellation out = detail::assemble(cells, {}, s, detail::outline_segment_length(settings));
-  // Label the shared edges that lie on a trace (within the collapse's shift of a vertex).
+  // Label the shared edges that lie on a trace.
   const double label = 1e3 * tolerance;
-  std::vector<Chord> lines;
-  for (const JointTrace& t : traces) lines.push_back({t.a, t.b, t.set});
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> first_block;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> pair_index;
   for (std::uint32_t bi = 0; bi < out.blocks.size(); ++bi) {
@@ -273,10 +266,10 @@ Tessellation cut_by_joints(const Tessellation& intact, std::span<const JointTrac
       const Point pu = out.vertices[u], pv = out.vertices[v];
       const Point ca = detail::centroid(out.vertices, out.blocks[it->second]);
       const Point cb = detail::centroid(out.vertices, b);
-      for (const Chord& c : lines) {
+      for (const JointTrace& c : traces) {
         // On the trace, and between blocks on either side of it (not an intact edge near it).
         const Point n{c.a.y - c.b.y, c.b.x - c.a.x};
-        if (!on_chord(pu, pv, c, label) || dot(n, ca - c.a) * dot(n, cb - c.a) >= 0) continue;
+        if (!on_trace(pu, pv, c, label) || dot(n, ca - c.a) * dot(n, cb - c.a) >= 0) continue;
         const std::pair<std::uint32_t, std::uint32_t> blocks{std::min(it->second, bi),
                                                              std::max(it->second, bi)};
         const auto [p, added] = pair_index.emplace(blocks, out.joint_edges.size());
