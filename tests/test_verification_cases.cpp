@@ -49,12 +49,12 @@ TEST(Verification, R2RoughJointClosesOnTheBandisHyperbola) {
   EXPECT_TRUE(passes(r2_normal_closure()));
 }
 TEST(Verification, R1KirschHoleWallClosesByTheElasticSolution) {
-  // Zone size 0.2 a: the wall's displacement within the target; the stresses converge with zone
-  // size (verification --rock-only) and are not judged on this coarse rung.
-  const auto rows = r1_kirsch(0.2);
+  // Zone size 0.1 a at the wall: the displacement within the target; the stresses reach it at
+  // 0.025 a (verification --rock-only) and are held here to this rung's 4.2 and 5.1 %.
+  const auto rows = r1_kirsch(0.1);
   EXPECT_TRUE(passes(rows[2]));
-  EXPECT_LT(rows[0].error, 0.1);
-  EXPECT_LT(rows[1].error, 0.2);
+  EXPECT_LT(rows[0].error, 0.05);
+  EXPECT_LT(rows[1].error, 0.06);
 }
 TEST(Verification, R3RoofWedgeFallsBelowItsLimitFrictionAndStaysAbove) {
   for (const auto& r : r3_roof_wedge()) EXPECT_TRUE(passes(r));

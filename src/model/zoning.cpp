@@ -76,9 +76,25 @@ void refresh_corners(Model& model) {
 
 }  // namespace
 
+namespace {
+void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double density,
+                     const ElasticMaterial& material, Group group);
+}  // namespace
+
 void add_deformable_block(Model& model, const std::vector<Point>& polygon, double density,
                           const ElasticMaterial& material, double zone_size, Group group) {
-  const geometry::ZoneMesh mesh = geometry::mesh_polygon(polygon, zone_size);
+  add_zoned_block(model, geometry::mesh_polygon(polygon, zone_size), density, material, group);
+}
+
+void add_deformable_block(Model& model, const std::vector<Point>& polygon, double density,
+                          const ElasticMaterial& material, const geometry::ZoneSize& zone_size,
+                          Group group) {
+  add_zoned_block(model, geometry::mesh_polygon(polygon, zone_size), density, material, group);
+}
+
+namespace {
+void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double density,
+                     const ElasticMaterial& material, Group group) {
   std::vector<Point> outline;
   for (std::uint32_t g : mesh.boundary) outline.push_back(mesh.points[g]);
   add_block(model, outline, density, group);
@@ -165,6 +181,7 @@ void add_deformable_block(Model& model, const std::vector<Point>& polygon, doubl
   z.gp_end.push_back(static_cast<std::uint32_t>(z.gridpoints()));
   refresh_deformable(model);
 }
+}  // namespace
 
 void refresh_deformable(Model& model) {
   Blocks& bl = model.blocks;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -290,16 +291,22 @@ std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::str
   // R1's zone-size ladder: sigma_theta's error against wall time (verification/r1_kirsch_ladder),
   // the finest the judged rows.
   std::vector<std::vector<CaseResult>> ladder;
-  for (const double h : {0.2, 0.1, 0.05}) ladder.push_back(r1_kirsch(h));
+  for (const double h : {0.2, 0.1, 0.05, 0.025}) ladder.push_back(r1_kirsch(h));
   {
     std::ofstream csv(std::filesystem::path(source_dir) / "verification" / "r1_kirsch_ladder.csv");
-    const double order = std::log2(ladder[1][1].error / ladder[2][1].error);
+    const double order = std::log2(ladder[2][1].error / ladder[3][1].error);
     csv << "parameter,value,error,seconds,default,order\n";
     for (std::size_t k = 0; k < ladder.size(); ++k)
       csv << fmt::format("{},{},{},{:.3f},{},{:.3f}\n", 0.2 / (1 << k), ladder[k][1].error,
                          ladder[k][1].error, ladder[k][1].seconds, k + 1 == ladder.size() ? 1 : 0,
                          order);
   }
+  const std::filesystem::path dir = std::filesystem::path(source_dir) / "verification";
+  const std::string plot =
+      fmt::format("/usr/bin/python3 {} {} {} 'R1 Kirsch: sigma_theta, zone size at the wall / a'",
+                  (dir / "plot_cost_accuracy.py").string(), (dir / "r1_kirsch_ladder.csv").string(),
+                  (dir / "r1_kirsch_ladder.png").string());
+  if (std::system(plot.c_str()) != 0) fmt::print(stderr, "R1: the cost-accuracy plot failed\n");
   for (std::size_t k = 0; k + 1 < ladder.size(); ++k)
     for (CaseResult r : ladder[k]) {
       r.informational = true;  // the ladder's coarser rungs

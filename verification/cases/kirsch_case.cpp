@@ -18,7 +18,7 @@ using model::Point;
 
 // The verification target's rock and loading: a = 1 m, G 2.8 GPa, K 3.9 GPa; far-field
 // p1 = 30 MPa vertical and p2 = 15 MPa horizontal compression (tension positive below).
-constexpr double a = 1.0, G = 2.8e9, K = 3.9e9, Sx = -15e6, Sy = -30e6, rho = 2500;
+constexpr double a = 1.0, G = 2.8e9, K = 3.9e9, Sx = -15e6, Sy = -30e6, rho = 1.0;
 constexpr double half = 5.0;  // m, half width of the square domain
 const double E = 9 * K * G / (3 * K + G), nu = (3 * K - 2 * G) / (2 * (3 * K + G));
 
@@ -62,7 +62,8 @@ std::vector<CaseResult> r1_kirsch(double h) {
     return (half / std::max(std::abs(d.x), std::abs(d.y))) * d;
   };
   const double deg = std::numbers::pi / 180;
-  const int arc = std::max(4, static_cast<int>(std::ceil(0.5 * std::numbers::pi * a / h)));
+  // A multiple of four segments per quarter, so that gridpoints lie where the axes meet the wall.
+  const int arc = 4 * static_cast<int>(std::ceil(0.125 * std::numbers::pi * a / h));
   for (int q = 0; q < 4; ++q) {
     const double p0 = (-67.5 + 90.0 * q) * deg, p1 = p0 + 90.0 * deg, corner = p0 + 22.5 * deg;
     std::vector<Point> poly{ray_end(p0),
@@ -72,7 +73,11 @@ std::vector<CaseResult> r1_kirsch(double h) {
       const double t = p0 + 0.5 * std::numbers::pi * k / arc;
       poly.push_back(a * Point{std::cos(t), std::sin(t)});
     }
-    model::add_deformable_block(m, poly, rho, mat, h, model::Group::specimen);
+    // Graded zoning: h at the wall growing in proportion to r, so a zone's share of the
+    // stress error, about h |grad sigma| ~ h(r) p a^2 / r^3, falls off away from the hole.
+    model::add_deformable_block(
+        m, poly, rho, mat, [h](Point p) { return h * std::max(1.0, std::hypot(p.x, p.y) / a); },
+        model::Group::specimen);
   }
   auto& z = m.zoning;
   // Kirsch's tractions on the outer boundary, so that the finite square carries the infinite
@@ -116,7 +121,9 @@ std::vector<CaseResult> r1_kirsch(double h) {
   s.local_damping = 0.8;
   // Density scaling to a quarter of a zone's P-wave transit (the static answer does not depend on
   // the masses).
-  s.time_step = 0.25 * h / std::sqrt((mat.lambda() + 2 * mat.shear_modulus()) / rho);
+  // Every gridpoint's mass then comes from the scaling (rho is far below what the step needs), so
+  // the large zones away from the hole pass a wave in as few steps as the small ones.
+  s.time_step = 0.25 * h / std::sqrt((mat.lambda() + 2 * mat.shear_modulus()) / 2500.0);
   auto solver = make_solver(m, "linear_elastic", params({{"jkn", jk}, {"jks", jk}}), s);
   double peak = 0;
   // The body floats: its rigid translation and rotation (no stiffness, so nothing damps them)
@@ -142,7 +149,7 @@ std::vector<CaseResult> r1_kirsch(double h) {
     hold_rigid();
     const double ke = solver->kinetic_energy();
     peak = std::max(peak, ke);
-    if (i > 2000 && ke < 1e-12 * peak) break;
+    if (i > 2000 && ke < 1e-10 * peak) break;
   }
   // Zone stresses along the axes beyond 1.2 a (zones whose centroid lies within h / 2 of an
   // axis), against Kirsch at the centroid; and the hole's radial displacement where the axes
@@ -181,8 +188,9 @@ std::vector<CaseResult> r1_kirsch(double h) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const std::string settings = fmt::format(
-      "zone size {:g} a, {} zones, {} steps; 4 blocks joined on rays at 22.5 + k 90 deg", h / a,
-      z.zones.size(), solver->steps());
+      "zone size {:g} a at the wall, growing as r / a, {} zones, {} steps; 4 blocks joined on "
+      "rays at 22.5 + k 90 deg",
+      h / a, z.zones.size(), solver->steps());
   const auto row = [&](std::string name, std::string ref, double error, double tolerance) {
     CaseResult r{"R1", std::move(name), std::move(ref), 0, error, error, tolerance, settings};
     r.seconds = seconds;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "vorodec/geometry/point.hpp"
+#include "vorodec/geometry/zone_mesh.hpp"
 
 namespace vorodec::model {
 
@@ -99,6 +100,10 @@ enum class Group : std::int32_t;
 // become the block's corners, so contact detection and geometry treat it like any block.
 void add_deformable_block(Model& model, const std::vector<Point>& polygon, double density,
                           const ElasticMaterial& material, double zone_size, Group group);
+// The same with a zone size that varies over the block (m at each point; graded zoning).
+void add_deformable_block(Model& model, const std::vector<Point>& polygon, double density,
+                          const ElasticMaterial& material, const geometry::ZoneSize& zone_size,
+                          Group group);
 
 // World corners, rounded-corner arcs and centroids of the deformable blocks from their gridpoints.
 void refresh_deformable(Model& model);
