@@ -2,11 +2,15 @@
 // included, and the stage reports what the opening did.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "run_support.hpp"
 #include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
+#include "vorodec/measure/joint_displacement.hpp"
+#include "vorodec/model/contact_geometry.hpp"
 
 using namespace vorodec;
 
@@ -69,4 +73,67 @@ TEST(Excavation, StageReportsTheRemovedBlocksAndTheOpeningsConvergence) {
   EXPECT_GT(std::stod(summary.substr(at + 17)), 0.0);
   EXPECT_NE(vorodec::testing::slurp(out / "history.csv").find("opening_convergence"),
             std::string::npos);
+}
+
+TEST(Excavation, JointSlipAndOpeningAreTheBlocksRelativeDisplacementAcrossTheJoint) {
+  const io::ModelConfig cfg = run::read_model_file(kSmall);
+  run::PreparedModel p = run::prepare_model(cfg, run::make_specimen(cfg));
+  auto& m = *p.model;
+  auto& bl = m.blocks;
+  const int first = p.solver->law_table().joint_set_law;
+  ASSERT_GE(first, 0);
+  const measure::BlockPlacement at = measure::placement_of(bl);
+  // A rigid motion of the whole model (turn 0.01 rad about (1, 1), shift (3, -2) mm) moves no
+  // joint.
+  for (std::size_t b = 0; b < bl.size(); ++b) {
+    const double c = std::cos(0.01), s = std::sin(0.01), x = bl.x[b] - 1, y = bl.y[b] - 1;
+    bl.x[b] = 1 + c * x - s * y + 0.003;
+    bl.y[b] = 1 + s * x + c * y - 0.002;
+    bl.theta[b] += 0.01;
+  }
+  model::refresh_world(m);
+  for (const double d : measure::joint_displacements(m, at, first, 1)) EXPECT_LT(d, 1e-12);
+  // One block of a bedding contact shifted 0.1 mm along the joint: that contact slips 0.1 mm and
+  // none of the set more; then 0.1 mm away from its neighbour across the joint: it opens 0.1 mm.
+  const measure::BlockPlacement moved = measure::placement_of(bl);
+  const auto joint = std::find_if(m.contacts.begin(), m.contacts.end(),
+                                  [&](const model::Contact& c) { return c.law == first; });
+  ASSERT_NE(joint, m.contacts.end());
+  model::Contact k = *joint;
+  const model::ContactFrame f = model::contact_frame(bl, k);
+  const auto a = static_cast<std::size_t>(k.a);
+  bl.x[a] += 1e-4 * -f.n.y;
+  bl.y[a] += 1e-4 * f.n.x;
+  model::refresh_world(m);
+  const std::vector<double> slid = measure::joint_displacements(m, moved, first, 1);
+  EXPECT_NEAR(slid[0], 1e-4, 1e-12);
+  bl.x[a] = moved.x[a] + 1e-4 * f.n.x;
+  bl.y[a] = moved.y[a] + 1e-4 * f.n.y;
+  model::refresh_world(m);
+  EXPECT_NEAR(measure::joint_displacements(m, moved, first, 1)[1], 1e-4, 1e-12);
+}
+
+TEST(Excavation, GradualReleaseHoldsTheOpeningBackWhileItLasts) {
+  // tunnel_small releases the opening over 0.02 s; released at once, the lining has moved
+  // further by then.
+  const std::filesystem::path slow = vorodec::testing::out_dir("excavation_slow");
+  const std::filesystem::path sudden = vorodec::testing::out_dir("excavation_sudden");
+  ASSERT_EQ(vorodec::testing::run_vorodec("run " + kSmall + " --out " + slow.string()), 0);
+  ASSERT_EQ(vorodec::testing::run_vorodec("run " + kSmall + " --out " + sudden.string() +
+                                          " --set stage[1].relaxation_time=0"),
+            0);
+  const auto convergence_at = [](const std::filesystem::path& dir, double t) {
+    std::istringstream header(vorodec::testing::slurp(dir / "history.csv"));
+    std::string line;
+    std::getline(header, line);
+    std::size_t u = 0;
+    std::istringstream names(line);
+    for (std::string name; std::getline(names, name, ',') && name != "opening_convergence";) ++u;
+    for (const auto& row : vorodec::testing::read_csv(dir / "history.csv"))
+      if (row[1] >= t) return row.at(u);  // column 1: time (s)
+    return std::nan("");
+  };
+  const double t = 0.02 + 0.01;  // the in-situ stage ends at 0.02 s; halfway through the release
+  EXPECT_LT(convergence_at(slow, t), 0.8 * convergence_at(sudden, t));
+  EXPECT_GT(convergence_at(slow, t), 0.0);
 }

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "vorodec/io/json.hpp"
+#include "vorodec/model/contact_geometry.hpp"
 
 namespace vorodec::run {
 
@@ -120,6 +121,9 @@ std::shared_ptr<const loading::ExtensionSettings> ExcavationMode::read_stage(
     for (const Point p : e->polygon) e->centre = e->centre + (1.0 / double(m)) * p;
   }
   e->fall_distance = sec.positive("fall_distance", 0.1 * extent);
+  e->relaxation_time = sec.non_negative("relaxation_time", 0.0);
+  if (e->relaxation_time > st.end.duration)
+    sec.fail("relaxation_time", "must not exceed the stage's end_time");
   for (const loading::Stage& earlier : cfg.load_path.stages)
     if (earlier.mode == keys.control &&
         overlap(excavation_settings(earlier).outline(), e->outline()))
@@ -145,12 +149,34 @@ void ExcavationMode::begin_stage(const StageContext& c) {
     if (gone[a] && !gone[b] && bl.group[b] == model::Group::specimen) lines[b] = 1;
     if (gone[b] && !gone[a] && bl.group[a] == model::Group::specimen) lines[a] = 1;
   }
+  // The removed blocks' last forces on the lining: each contact's force on its block a as the
+  // last step applied it (fn n + gain fs s at the arm, from the world arrays of that step's
+  // start), minus it on b.
+  std::vector<std::array<double, 3>> load(e.relaxation_time > 0 ? bl.size() : 0);
+  if (!load.empty())
+    for (model::Contact k : model_.contacts) {
+      const auto a = static_cast<std::size_t>(k.a), b = static_cast<std::size_t>(k.b);
+      if (!(gone[b] && lines[a]) && !(gone[a] && lines[b])) continue;
+      const model::ContactFrame f = model::contact_frame(bl, k);
+      const Point force = k.fn * f.n + (f.gain * k.fs) * Point{-f.n.y, f.n.x};
+      const std::size_t on = gone[b] ? a : b;
+      const double sign = on == a ? 1.0 : -1.0;
+      const Point arm = f.arm - Point{bl.kin[on].x, bl.kin[on].y};
+      load[on] = {load[on][0] + sign * force.x, load[on][1] + sign * force.y,
+                  load[on][2] + sign * cross(arm, force)};
+    }
   solver_.remove_blocks(removed);
   lining_.clear();
+  relaxation_load_.clear();
   for (std::uint32_t b = 0; b < bl.size(); ++b)
-    if (lines[b]) lining_.push_back(b);
-  x_at_ = bl.x;
-  y_at_ = bl.y;
+    if (lines[b]) {
+      lining_.push_back(b);
+      if (!load.empty()) relaxation_load_.push_back(load[b]);
+    }
+  start_time_ = solver_.time();
+  relaxation_time_ = e.relaxation_time;
+  apply_relaxation();
+  at_ = measure::placement_of(bl);
   centre_ = e.centre;
   fall_distance_ = e.fall_distance;
   removed_total_ += static_cast<double>(removed.size());
@@ -163,10 +189,10 @@ void ExcavationMode::measure() {
   const auto& bl = model_.blocks;
   double sum = 0, most = 0;
   for (const std::uint32_t b : lining_) {
-    const Point r = Point{x_at_[b], y_at_[b]} - centre_;
+    const Point r = Point{at_.x[b], at_.y[b]} - centre_;
     const double len = std::sqrt(dot(r, r));
     const double inward =
-        len > 0 ? -dot(Point{bl.x[b] - x_at_[b], bl.y[b] - y_at_[b]}, r) / len : 0;
+        len > 0 ? -dot(Point{bl.x[b] - at_.x[b], bl.y[b] - at_.y[b]}, r) / len : 0;
     sum += inward;
     most = std::max(most, inward);
   }
@@ -175,12 +201,31 @@ void ExcavationMode::measure() {
   double fallen = 0;
   for (std::size_t b = 0; b < bl.size(); ++b)
     if (bl.group[b] == model::Group::specimen &&
-        std::hypot(bl.x[b] - x_at_[b], bl.y[b] - y_at_[b]) > fall_distance_)
+        std::hypot(bl.x[b] - at_.x[b], bl.y[b] - at_.y[b]) > fall_distance_)
       ++fallen;
   now_.fallen = fallen;
+  joints_now_ = measure::joint_displacements(model_, at_, solver_.law_table().joint_set_law,
+                                             cfg_.joint_sets.size());
+}
+
+// The lining's share of the removed blocks' forces, falling linearly to zero over the relaxation
+// time (set, not added: nothing else loads an inner block).
+void ExcavationMode::apply_relaxation() {
+  if (relaxation_load_.empty()) return;
+  auto& bl = model_.blocks;
+  const double left =
+      std::max(0.0, 1.0 - (solver_.time() - start_time_) / std::max(relaxation_time_, 1e-300));
+  for (std::size_t i = 0; i < lining_.size(); ++i) {
+    const std::uint32_t b = lining_[i];
+    bl.fx[b] = left * relaxation_load_[i][0];
+    bl.fy[b] = left * relaxation_load_[i][1];
+    bl.moment[b] = left * relaxation_load_[i][2];
+  }
+  if (left == 0.0) relaxation_load_.clear();
 }
 
 ModeVerdict ExcavationMode::after_step(const StageContext&, const measure::SpecimenState&) {
+  apply_relaxation();
   if (solver_.steps() % 100 == 0) measure();
   return {};
 }
@@ -188,12 +233,14 @@ ModeVerdict ExcavationMode::after_step(const StageContext&, const measure::Speci
 std::string ExcavationMode::unstable(const StageContext& c, const std::string&) {
   measure();
   reports_.emplace_back(c.index, now_);
+  joint_reports_.insert(joint_reports_.end(), joints_now_.begin(), joints_now_.end());
   return "";
 }
 
 void ExcavationMode::end_stage(const StageContext& c) {
   measure();
   reports_.emplace_back(c.index, now_);
+  joint_reports_.insert(joint_reports_.end(), joints_now_.begin(), joints_now_.end());
 }
 
 bool ExcavationMode::progress(const StageContext&, ProgressReport& r) const {
@@ -203,35 +250,56 @@ bool ExcavationMode::progress(const StageContext&, ProgressReport& r) const {
 }
 
 std::vector<std::string> ExcavationMode::column_names() const {
-  return {"excavated_blocks", "opening_convergence", "opening_max_convergence", "fallen_blocks"};
+  std::vector<std::string> names{"excavated_blocks", "opening_convergence",
+                                 "opening_max_convergence", "fallen_blocks"};
+  for (const auto& set : cfg_.joint_sets) {
+    names.push_back("joint_max_slip_" + set.name);
+    names.push_back("joint_max_opening_" + set.name);
+  }
+  return names;
 }
 
 void ExcavationMode::column_values(std::vector<double>& row) const {
   row.insert(row.end(), {removed_total_, now_.convergence, now_.max_convergence, now_.fallen});
+  for (std::size_t k = 0; k < cfg_.joint_sets.size(); ++k)
+    row.insert(row.end(), {joints_now_[2 * k], joints_now_[2 * k + 1]});
 }
 
 void ExcavationMode::summarise(io::Json& summary) const {
   if (reports_.empty()) return;
   io::Json rows = io::Json::array();
-  for (const auto& [i, r] : reports_)
+  const std::size_t sets = cfg_.joint_sets.size();
+  for (std::size_t n = 0; n < reports_.size(); ++n) {
+    const auto& [i, r] = reports_[n];
+    io::Json joints = io::Json::array();
+    for (std::size_t k = 0; k < sets; ++k)
+      joints.push_back({{"set", cfg_.joint_sets[k].name},
+                        {"max_slip_m", io::rounded(joint_reports_[2 * (n * sets + k)], 6)},
+                        {"max_opening_m", io::rounded(joint_reports_[2 * (n * sets + k) + 1], 6)}});
     rows.push_back({{"stage", cfg_.load_path.stages[i].name},
                     {"removed_blocks", r.removed},
                     {"lining_blocks", r.lining},
                     {"convergence_m", io::rounded(r.convergence, 6)},
                     {"max_convergence_m", io::rounded(r.max_convergence, 6)},
-                    {"fallen_blocks", r.fallen}});
+                    {"fallen_blocks", r.fallen},
+                    {"joint_sets", std::move(joints)}});
+  }
   summary["excavation_stages"] = std::move(rows);
 }
 
 void ExcavationMode::save(checkpoint::OutArchive& ar) const {
   ar(centre_.x, centre_.y, fall_distance_, removed_total_, checkpoint::bytes(now_),
-     checkpoint::pod(lining_), checkpoint::pod(x_at_), checkpoint::pod(y_at_));
+     checkpoint::pod(lining_), checkpoint::pod(at_.x), checkpoint::pod(at_.y),
+     checkpoint::pod(at_.theta), checkpoint::pod(relaxation_load_), start_time_, relaxation_time_,
+     checkpoint::pod(joints_now_), checkpoint::pod(joint_reports_));
   save_stage_reports(ar, reports_);
 }
 
 void ExcavationMode::load(checkpoint::InArchive& ar, const loading::Stage&) {
   ar(centre_.x, centre_.y, fall_distance_, removed_total_, checkpoint::bytes(now_),
-     checkpoint::pod(lining_), checkpoint::pod(x_at_), checkpoint::pod(y_at_));
+     checkpoint::pod(lining_), checkpoint::pod(at_.x), checkpoint::pod(at_.y),
+     checkpoint::pod(at_.theta), checkpoint::pod(relaxation_load_), start_time_, relaxation_time_,
+     checkpoint::pod(joints_now_), checkpoint::pod(joint_reports_));
   load_stage_reports(ar, reports_);
 }
 

@@ -3,6 +3,9 @@
 // stage's start the blocks whose centroids lie inside a circle or polygon are removed
 // (Solver::remove_blocks); the servo then holds the vertical stress and the confinement the
 // horizontal one while the rock around the opening relaxes, slides on its joints, or falls in.
+// With a relaxation time the removed blocks' last forces on the lining stay on as loads that fall
+// linearly to zero over that time (a gradual release instead of a sudden one).
+#include <array>
 #include <optional>
 #include <string>
 #include <utility>
@@ -12,6 +15,7 @@
 #include "vorodec/geometry/point.hpp"
 #include "vorodec/input/toml_section.hpp"
 #include "vorodec/loading/load_path.hpp"
+#include "vorodec/measure/joint_displacement.hpp"
 
 namespace vorodec::run {
 
@@ -20,7 +24,8 @@ struct ExcavationSettings final : loading::ExtensionSettings {
   geometry::Point centre;  // m
   double radius = 0;       // m
   std::vector<geometry::Point> polygon;
-  double fall_distance = 0;  // m, a block displaced this far since the excavation has fallen
+  double fall_distance = 0;    // m, a block displaced this far since the excavation has fallen
+  double relaxation_time = 0;  // s, over which the removed blocks' forces fall to zero
   bool inside(geometry::Point p) const;
   // The circle as a 64-gon, or the polygon (overlap checks).
   std::vector<geometry::Point> outline() const;
@@ -47,7 +52,7 @@ class ExcavationMode final : public StageMode {
   static constexpr io::StageModeKeys keys{"excavation", nullptr, nullptr, read_stage};
 
   explicit ExcavationMode(const DriverContext& c)
-      : cfg_(c.cfg), model_(c.model), solver_(c.solver) {}
+      : cfg_(c.cfg), model_(c.model), solver_(c.solver), joints_now_(2 * c.cfg.joint_sets.size()) {}
   void begin_stage(const StageContext& c) override;
   ModeVerdict after_step(const StageContext& c, const measure::SpecimenState& s) override;
   std::string unstable(const StageContext& c, const std::string& what) override;
@@ -61,6 +66,7 @@ class ExcavationMode final : public StageMode {
 
  private:
   void measure();
+  void apply_relaxation();
 
   const io::ModelConfig& cfg_;
   model::Model& model_;
@@ -70,10 +76,16 @@ class ExcavationMode final : public StageMode {
   geometry::Point centre_;
   double fall_distance_ = 0;
   std::vector<std::uint32_t> lining_;
-  std::vector<double> x_at_, y_at_;
+  measure::BlockPlacement at_;
   double removed_total_ = 0;
   ExcavationReport now_;
   std::vector<std::pair<std::size_t, ExcavationReport>> reports_;
+  // The removed blocks' forces on each lining block (N per m, N m per m), and the release.
+  std::vector<std::array<double, 3>> relaxation_load_;
+  double start_time_ = 0, relaxation_time_ = 0;
+  // Per [[joint_set]]: the largest slip and opening (m) of its contacts since the excavation;
+  // and the same at the end of each reported stage (two per set, in reports_' order).
+  std::vector<double> joints_now_, joint_reports_;
 };
 
 }  // namespace vorodec::run

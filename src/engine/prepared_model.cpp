@@ -199,6 +199,7 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
   for (const auto& set : cfg.joint_sets)
     groups.push_back(laws::find_law(set.law.name)->make(set.law.params, cfg.seed));
   const int first_set = static_cast<int>(groups.size() - cfg.joint_sets.size());
+  table.joint_set_law = first_set;
   for (const auto& j : tess.joint_edges)
     table.joints[solver::LawTable::joint_key(j.a, j.b)] = first_set + j.set;
   const auto set = [&](Group a, Group b, int law) {

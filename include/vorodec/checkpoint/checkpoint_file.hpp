@@ -17,7 +17,9 @@ namespace vorodec::checkpoint {
 
 // 3: the quasi-static driver saves its stage modes in turn (each its state and reports).
 // 4: zone stresses and strains saved as arrays by component; the zone-force scratch is not saved.
-inline constexpr std::uint32_t kFormat = 5;
+// 5: blocks carry their groups (excavation).
+// 6: excavation stages save their joint-set measures and relaxation loads.
+inline constexpr std::uint32_t kFormat = 6;
 
 struct Header {
   std::string vorodec_version;

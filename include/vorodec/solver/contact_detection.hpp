@@ -48,6 +48,7 @@ struct LawTable {
   // Jointed specimens: a block pair (key joint_key(a, b)) whose shared edge lies on a joint takes
   // its set's law group.
   std::unordered_map<std::uint64_t, int> joints;
+  int joint_set_law = -1;  // the law group of the first [[joint_set]]; set k has this + k
   static std::uint64_t joint_key(std::uint32_t a, std::uint32_t b) {
     return std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
   }
@@ -80,6 +81,7 @@ struct DetectionStats {
 class ContactDetector {
  public:
   ContactDetector(double tolerance, LawTable table) : tolerance_(tolerance), table_(table) {}
+  const LawTable& law_table() const { return table_; }
 
   // Refreshes model.contacts (sorted by law, then corner owner) and every law's arrays. With
   // `bond_new` the contacts it creates are bonded (the initial tessellation).

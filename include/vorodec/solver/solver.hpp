@@ -83,6 +83,7 @@ class Solver {
   double contact_strain_energy() const;
   double zone_strain_energy() const;  // J per m, deformable blocks
   std::size_t initial_bonded_contacts() const { return initial_bonded_; }
+  const LawTable& law_table() const { return detector_.law_table(); }
   std::size_t detections() const { return detections_; }
   const std::vector<std::unique_ptr<laws::LawGroup>>& laws() const { return laws_; }
   // Sum of contact forces on block b in the last step (reaction of a platen), N per m.
