@@ -686,3 +686,29 @@ TEST(BadInput, ExcavationCircleWithoutCentreIsRejected) {
   EXPECT_TRUE(rejected("excavation_centre", excavation("circle = { radius = 0.004 }"),
                        "stage[1].circle.centre", 20, "required"));
 }
+
+TEST(BadInput, InSituStressThatTheModelCannotHoldIsRejected) {
+  const std::string in_situ = "[in_situ]\nstress = [5e6, 10e6, 0.0]\n";
+  EXPECT_TRUE(rejected("in_situ_two_numbers",
+                       std::string(good_model) + "[in_situ]\nstress = [5e6, 10e6]\n",
+                       "in_situ.stress", 18, "three numbers"));
+  EXPECT_TRUE(rejected("in_situ_confined",
+                       replace(std::string(good_model) + in_situ, "[[stage]]",
+                               "[loading]\nconfining_stress = 1e6\n[[stage]]"),
+                       "in_situ.stress", 20, "remove loading.confining_stress"));
+  EXPECT_TRUE(rejected("in_situ_shear",
+                       std::string(good_model) + "[in_situ]\nstress = [5e6, 10e6, 1e6]\n",
+                       "in_situ.stress", 18, "bonded = true"));
+  EXPECT_TRUE(rejected("in_situ_zoned",
+                       replace(std::string(good_model) + in_situ, "density = 2600",
+                               "density = 2600\ndeformable = true\nzone_size = 0.004\n"
+                               "E = 50e9\nnu = 0.25"),
+                       "in_situ.stress", 22, "deformable"));
+  const std::string creep = replace(std::string(good_model) + in_situ,
+                                    "jkn = 2e13\njks = 8e12\ntension = 10e6\ncohesion = 20e6\n"
+                                    "friction = 30",
+                                    "law = \"burgers\"\nkmn = 2e13\ncmn = 1e15\nkkn = 2e13\n"
+                                    "ckn = 1e14\nkms = 8e12\ncms = 1e15\nkks = 8e12\ncks = 1e14\n"
+                                    "tension = 10e6\ncohesion = 20e6\nfriction = 30");
+  EXPECT_TRUE(rejected("in_situ_burgers", creep, "in_situ.stress", 25, "cannot start loaded"));
+}

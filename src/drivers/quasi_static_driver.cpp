@@ -15,7 +15,7 @@ namespace vorodec::run {
 // A member added to the driver is either state a checkpoint carries (save and load it in
 // QuasiStaticDriver::state) or comes again from the model file or the loaded state (say so there);
 // then update these sizes.
-static_assert(sizeof(QuasiStaticDriver) == 744, "QuasiStaticDriver changed: see state()");
+static_assert(sizeof(QuasiStaticDriver) == 816, "QuasiStaticDriver changed: see state()");
 static_assert(sizeof(DriverOutcome) == 96, "DriverOutcome changed: see state()");
 static_assert(sizeof(loading::StageControl) == 104, "StageControl changed: see its serialize()");
 
@@ -75,6 +75,10 @@ QuasiStaticDriver::QuasiStaticDriver(const DriverContext& c)
   outcome_.stalled.assign(cfg_.load_path.stages.size(), false);
   if (cfg_.load_path.stages.empty()) phase_ = Phase::done;
   if (cfg_.quiet_boundary) quiet_.emplace(make_quiet_boundary(*cfg_.quiet_boundary, cfg_, model_));
+  if (cfg_.in_situ) {
+    in_situ_ = loading::resolved(*cfg_.in_situ, model_);
+    in_situ_mid_xx_ = in_situ_->at(loading::specimen_top(model_) - 0.5 * boundary_.height()).xx;
+  }
 }
 
 RunView QuasiStaticDriver::view() const {
@@ -181,8 +185,14 @@ void QuasiStaticDriver::step(Observers& observers) {
       boundary_.width());
   boundary_.set_platen_velocity(model_, v_, cfg_.load_path.both_platens);
   if (quiet_) quiet_->clear_loads(model_);
-  const double confinement = cfg_.load_path.confinement_at(solver_.time());
-  boundary_.apply_confinement(model_, confinement);
+  // The lateral stress: the in-situ field's (its horizontal stress at mid-height stands for it in
+  // the end conditions), or the load path's confinement.
+  const double confinement =
+      in_situ_ ? in_situ_mid_xx_ : cfg_.load_path.confinement_at(solver_.time());
+  if (in_situ_)
+    boundary_.apply_stress(model_, *in_situ_);
+  else
+    boundary_.apply_confinement(model_, confinement);
   if (quiet_) quiet_->apply(model_, solver_.time());
   solver_.step();
   state_ = measure::measure_specimen(model_, boundary_, solver_);

@@ -60,6 +60,8 @@ class QuasiStaticDriver final : public Driver, private ExtraColumns {
   std::vector<std::unique_ptr<StageMode>> modes_;  // those the stages use
   StageMode* mode_ = nullptr;                      // the current stage's, if any
   std::optional<loading::QuietBoundary> quiet_;    // from the model file (no state of its own)
+  std::optional<loading::InSituStress> in_situ_;   // from the model file, its datum resolved
+  double in_situ_mid_xx_ = 0;  // Pa, its horizontal stress at mid-height (from the model file)
   measure::SpecimenState state_;
   double v_ = 0;               // m/s, top platen
   double stage_fraction_ = 0;  // largest progress fraction of the stage so far

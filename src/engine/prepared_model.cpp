@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "vorodec/engine/in_situ_start.hpp"
 #include "vorodec/geometry/grains.hpp"
 #include "vorodec/io/input_error.hpp"
 #include "vorodec/io/specimen_file.hpp"
@@ -218,6 +219,7 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
   if (settings.contact_tolerance <= 0) settings.contact_tolerance = d;
   s.solver = std::make_unique<solver::Solver>(*s.model, std::move(groups), table, settings);
   s.solver->initialise();
+  if (cfg.in_situ) preload_contacts(*s.model, *s.solver, loading::resolved(*cfg.in_situ, *s.model));
   return s;
 }
 

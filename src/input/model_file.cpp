@@ -69,6 +69,7 @@ void read_root(const toml::table& root, ModelConfig& cfg, const ModelFileKeys& k
   read_loading_table(top, cfg);
   read_load_path(top, cfg, keys);
   read_quiet_boundary_table(top, cfg);
+  read_in_situ_table(top, cfg);
   read_output_table(top, cfg);
   top.finish();
   check_lengths(root, cfg);

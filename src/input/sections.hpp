@@ -53,6 +53,8 @@ void read_load_path(TomlSection& top, ModelConfig& cfg, const ModelFileKeys& key
 TableReader read_joint_set_tables;
 // dynamics_keys.cpp: [quiet_boundary].
 TableReader read_quiet_boundary_table;
+// in_situ_keys.cpp: [in_situ].
+TableReader read_in_situ_table;
 
 // lengths.cpp: the specimen's lengths against one another, once every table is read.
 void check_lengths(const toml::table& root, const ModelConfig& cfg);

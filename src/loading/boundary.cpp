@@ -46,23 +46,27 @@ SpecimenBoundary::SpecimenBoundary(const model::Model& model) {
   }
 }
 
-void SpecimenBoundary::apply_confinement(model::Model& model, double sigma3) const {
+namespace {
+
+// Clears the lateral edges' loads, then adds each edge's force: `force(p0, p1)` N per m for the
+// counter-clockwise edge p0 -> p1, at its midpoint (half to each end gridpoint on a zoned block).
+template <class Force>
+void apply_traction(model::Model& model, const std::vector<BoundaryEdge>& edges, Force force) {
   auto& bl = model.blocks;
   auto& z = model.zoning;
-  for (const BoundaryEdge& e : edges_) {
+  for (const BoundaryEdge& e : edges) {
     bl.fx[e.block] = bl.fy[e.block] = bl.moment[e.block] = 0.0;
     if (bl.deformable[e.block]) {
       for (const auto g : {z.corner_gp[e.corner], z.corner_gp[bl.next_corner(e.block, e.corner)]})
         z.fx[static_cast<std::size_t>(g)] = z.fy[static_cast<std::size_t>(g)] = 0.0;
     }
   }
-  if (sigma3 == 0.0) return;
-  for (const BoundaryEdge& e : edges_) {
+  for (const BoundaryEdge& e : edges) {
     const std::uint32_t b = e.block;
-    if (bl.deformable[b]) {  // half the edge's traction force to each end gridpoint
+    if (bl.deformable[b]) {
       const auto g0 = static_cast<std::size_t>(z.corner_gp[e.corner]);
       const auto g1 = static_cast<std::size_t>(z.corner_gp[bl.next_corner(b, e.corner)]);
-      const Point f{-0.5 * sigma3 * (z.y[g1] - z.y[g0]), 0.5 * sigma3 * (z.x[g1] - z.x[g0])};
+      const Point f = 0.5 * force(Point{z.x[g0], z.y[g0]}, Point{z.x[g1], z.y[g1]});
       for (const std::size_t g : {g0, g1}) {
         z.fx[g] += f.x;
         z.fy[g] += f.y;
@@ -71,13 +75,30 @@ void SpecimenBoundary::apply_confinement(model::Model& model, double sigma3) con
     }
     const Point p0 = bl.to_world(b, bl.corner[e.corner]);
     const Point p1 = bl.to_world(b, bl.corner[bl.next_corner(b, e.corner)]);
-    // f = -sigma3 n L with n L = (dy, -dx) for a counter-clockwise edge.
-    const Point f{-sigma3 * (p1.y - p0.y), sigma3 * (p1.x - p0.x)};
+    const Point f = force(p0, p1);
     const Point mid = 0.5 * (p0 + p1);
     bl.fx[b] += f.x;
     bl.fy[b] += f.y;
     bl.moment[b] += (mid.x - bl.x[b]) * f.y - (mid.y - bl.y[b]) * f.x;
   }
+}
+
+}  // namespace
+
+void SpecimenBoundary::apply_confinement(model::Model& model, double sigma3) const {
+  // f = -sigma3 n L with n L = (dy, -dx) for a counter-clockwise edge.
+  apply_traction(model, edges_, [&](Point p0, Point p1) {
+    return Point{-sigma3 * (p1.y - p0.y), sigma3 * (p1.x - p0.x)};
+  });
+}
+
+void SpecimenBoundary::apply_stress(model::Model& model, const InSituStress& field) const {
+  // f = -s.(n L) with the field at the edge's midpoint (compression positive).
+  apply_traction(model, edges_, [&](Point p0, Point p1) {
+    const StressTensor s = field.at(0.5 * (p0.y + p1.y));
+    const Point nl{p1.y - p0.y, p0.x - p1.x};
+    return Point{-(s.xx * nl.x + s.xy * nl.y), -(s.xy * nl.x + s.yy * nl.y)};
+  });
 }
 
 void SpecimenBoundary::set_platen_velocity(model::Model& model, double v, bool both) const {

@@ -491,7 +491,7 @@ void Solver::check_stability() const {
           c.a, c.b, -c.gap, limit, settings_.overlap_limit, steps_, time_, c.length,
           c.bonded && c.state <= model::ContactState::slipping ? "bonded" : "not bonded", c.fn));
   }
-  const double supplied = energy_.boundary_work + energy_.body_work;
+  const double supplied = energy_.boundary_work + energy_.body_work + energy_.initial;
   const double ke = kinetic_energy();
   if (steps_ > 100 && ke > 1.5 * std::abs(supplied) + 1e-9)
     throw InstabilityError(fmt::format(
@@ -524,6 +524,17 @@ void Solver::set_bond(std::size_t i, const laws::BondView& b, double fn, double 
   c.fn = fn;
   c.fs = fs;
   energy_.corrosion += before - laws_[g]->strain_energy(local, fn, fs);
+}
+
+bool Solver::preload(std::size_t i, double fn, double fs) {
+  model::Contact& c = model_.contacts[i];
+  const auto [g, local] = group_of(law_begin_, c, i);
+  if (!laws_[g]->preload(local, c.gap, fn, fs)) return false;
+  energy_.initial +=
+      laws_[g]->strain_energy(local, fn, fs) - laws_[g]->strain_energy(local, c.fn, c.fs);
+  c.fn = fn;
+  c.fs = fs;
+  return true;
 }
 
 void Solver::break_bond(std::size_t i, laws::ContactEvent type, double time) {

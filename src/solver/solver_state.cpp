@@ -8,7 +8,7 @@ namespace vorodec::solver {
 // or comes again from the model file or the loaded state (say so there); then update these sizes.
 // face_control_ is the driver's, set again when it is made; the gridpoints' work_* are scratch.
 // The detector's law table (its joint pairs too) comes again from the model file.
-static_assert(sizeof(Solver) == 1096, "Solver changed: see Solver::state");
+static_assert(sizeof(Solver) == 1104, "Solver changed: see Solver::state");
 
 template <class Archive>
 void Solver::state(Archive& ar) {

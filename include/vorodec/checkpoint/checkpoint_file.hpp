@@ -19,7 +19,8 @@ namespace vorodec::checkpoint {
 // 4: zone stresses and strains saved as arrays by component; the zone-force scratch is not saved.
 // 5: blocks carry their groups (excavation).
 // 6: excavation stages save their joint-set measures and relaxation loads.
-inline constexpr std::uint32_t kFormat = 6;
+// 7: the solver's energy terms hold the in-situ stress's initial strain energy.
+inline constexpr std::uint32_t kFormat = 7;
 
 struct Header {
   std::string vorodec_version;

@@ -16,6 +16,7 @@
 #include "vorodec/geometry/tessellation.hpp"
 #include "vorodec/io/input_error.hpp"
 #include "vorodec/laws/contact_law.hpp"
+#include "vorodec/loading/in_situ.hpp"
 #include "vorodec/loading/load_path.hpp"
 #include "vorodec/loading/pressure_bar.hpp"
 #include "vorodec/loading/quiet_boundary.hpp"
@@ -122,7 +123,7 @@ struct ModelConfig {
   struct JointSet {
     std::string name;
     std::optional<geometry::JointSetGeometry> statistics;  // dip, spacing, trace, gap, ...
-    std::vector<geometry::JointTrace> fractures;          // from the set's or another set's file
+    std::vector<geometry::JointTrace> fractures;           // from the set's or another set's file
     LawChoice law;
   };
   std::vector<JointSet> joint_sets;
@@ -130,8 +131,9 @@ struct ModelConfig {
   // name: what each one's reader made of it (StageModeKeys, DriverKeys).
   std::map<std::string, std::shared_ptr<const loading::ExtensionSettings>, std::less<>> tables;
   std::optional<QuietBoundaryConfig> quiet_boundary;
-  LawChoice platens;            // platen to specimen
-  bool platens_bonded = false;  // glued to the specimen (direct tension)
+  std::optional<loading::InSituStress> in_situ;  // [in_situ]: the initial stress field
+  LawChoice platens;                             // platen to specimen
+  bool platens_bonded = false;                   // glued to the specimen (direct tension)
   solver::SolverSettings solver;
   long max_steps = 0;
   loading::LoadPath load_path;

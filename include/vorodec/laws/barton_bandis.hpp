@@ -56,6 +56,17 @@ struct BartonBandis {
     if (v < v_max) return p.kni * v / (1.0 - v / p.vm);
     return p.sn_max + tangent_at(p, p.sn_max) * (v - v_max);
   }
+  // Closure (m) at normal stress sn, on the hyperbola and on its linear end (normal_stress's
+  // inverse).
+  static double closure_of(const Props& p, double sn) {
+    if (sn <= p.sn_max) return closure_at(p, std::max(sn, 0.0));
+    return closure_at(p, p.sn_max) + (sn - p.sn_max) / tangent_at(p, p.sn_max);
+  }
+  // In-situ stress: the joint closed to carry fn at its gap, and the shear force fs.
+  static void preload(const Props& p, State& st, double gap, double fn, double fs) {
+    st.u_dil = gap + closure_of(p, fn / p.length);
+    st.fs = fs;
+  }
   static double max_stiffness(const Props& p) {
     return std::max(tangent_at(p, p.sn_max), p.ks) * p.length;
   }

@@ -151,6 +151,9 @@ class LawGroup {
   // Gives local contact i the springs and strength of `b` and, at its current gap, the forces
   // (fn, fs) N; or breaks it (tension and cohesion lost) with b.broken.
   virtual void set_bond(std::size_t i, const BondView& b, double gap, double fn, double fs) = 0;
+  // In-situ stress: local contact i carries (fn, fs) N at its current gap; false if the law cannot
+  // start loaded (its state has a history a force alone does not give).
+  virtual bool preload(std::size_t i, double gap, double fn, double fs) = 0;
   // Checkpoints: the per-contact properties and state (the parameters come from the model file).
   virtual void save(checkpoint::OutArchive& ar) const = 0;
   virtual void load(checkpoint::InArchive& ar) = 0;

@@ -69,6 +69,14 @@ class LawGroupOf final : public LawGroup {
       Law::set_bond(props_[i], state_[i], b, gap, fn, fs);
   }
 
+  bool preload(std::size_t i, double gap, double fn, double fs) override {
+    if constexpr (requires { Law::preload(props_[i], state_[i], gap, fn, fs); }) {
+      Law::preload(props_[i], state_[i], gap, fn, fs);
+      return true;
+    }
+    return false;
+  }
+
   std::vector<double> properties(std::size_t i) const override {
     static_assert(sizeof(typename Law::Props) == Law::property_names.size() * sizeof(double));
     std::vector<double> v(Law::property_names.size());

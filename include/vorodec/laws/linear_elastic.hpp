@@ -36,6 +36,10 @@ struct LinearElastic {
   static double elastic_reach(const Props&, const State&, double, double, double, double) {
     return std::numeric_limits<double>::infinity();
   }
+  static void preload(const Props& p, State& st, double gap, double fn, double fs) {
+    st.origin = gap + fn / p.kn;
+    st.fs = fs;
+  }
   static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {
     st.fs -= p.ks * k.du_s;
     return {-p.kn * (k.gap - st.origin), st.fs, ContactEvent::none, true};

@@ -77,6 +77,12 @@ struct MohrCoulomb {
     st.broken = b.broken;
   }
 
+  // In-situ stress: the contact carries (fn, fs) at its gap, its bond untouched.
+  static void preload(const Props& p, State& st, double gap, double fn, double fs) {
+    st.u_dil = gap + fn / p.kn;
+    st.fs = fs;
+  }
+
   static LawResult evaluate(const ContactKinematics& k, const Props& p, State& st) {
     LawResult r{-p.kn * (k.gap - st.u_dil), 0.0, ContactEvent::none, true};
     if (opens_in_tension(p.strength, st.broken, r)) {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "vorodec/loading/in_situ.hpp"
 #include "vorodec/model/model.hpp"
 
 namespace vorodec::loading {
@@ -21,6 +22,8 @@ class SpecimenBoundary {
 
   // Confining traction on the lateral edges, recomputed from the current geometry (follower load).
   void apply_confinement(model::Model& model, double sigma3) const;
+  // The in-situ stress's traction on the lateral edges, at each edge's midpoint (follower load).
+  void apply_stress(model::Model& model, const InSituStress& field) const;
   // v: the closing speed (m/s, shortening +), all on the top platen or half on each.
   void set_platen_velocity(model::Model& model, double v, bool both = false) const;
 

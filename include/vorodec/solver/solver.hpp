@@ -43,6 +43,7 @@ struct Energy {
   double breakage = 0.0;
   double viscous = 0.0;    // dashpots of viscous (Burger's) contacts
   double corrosion = 0.0;  // strain energy the stress-corrosion layers took from bonds
+  double initial = 0.0;    // strain energy the in-situ stress set into the contacts at the start
 };
 
 class Solver {
@@ -106,6 +107,9 @@ class Solver {
   // Gives contact i the degraded bond b, carrying (fn, fs) N at its gap; the strain energy this
   // takes from it is the energy term `corrosion`.
   void set_bond(std::size_t i, const laws::BondView& b, double fn, double fs);
+  // In-situ stress: contact i carries (fn, fs) N at its gap; its strain energy is the energy term
+  // `initial`. False if its law cannot start loaded.
+  bool preload(std::size_t i, double fn, double fs);
   // Breaks contact i's bond: a crack of `type` at `time` s (the corrosion clock).
   void break_bond(std::size_t i, laws::ContactEvent type, double time);
   // Called in every step between the contact forces and the integration: prescribed velocities
