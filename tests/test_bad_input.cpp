@@ -712,3 +712,18 @@ TEST(BadInput, InSituStressThatTheModelCannotHoldIsRejected) {
                                     "tension = 10e6\ncohesion = 20e6\nfriction = 30");
   EXPECT_TRUE(rejected("in_situ_burgers", creep, "in_situ.stress", 25, "cannot start loaded"));
 }
+
+TEST(BadInput, SideSupportsThatContradictTheLoadingAreRejected) {
+  const std::string loading = "[loading]\nsides = \"rollers\"\n[[stage]]";
+  EXPECT_TRUE(rejected("sides_typo", replace(good_model, "[[stage]]", loading), "loading.sides", 15,
+                       "\"stress\", \"roller\" or \"fixed\""));
+  EXPECT_TRUE(rejected("sides_confined",
+                       replace(good_model, "[[stage]]",
+                               "[loading]\nconfining_stress = 1e6\nsides = \"roller\"\n[[stage]]"),
+                       "loading.sides", 16, "no confining_stress"));
+  EXPECT_TRUE(rejected("sides_viscous",
+                       replace(good_model, "[[stage]]",
+                               "[loading]\nsides = \"fixed\"\n[quiet_boundary]\n"
+                               "sides = [\"left\"]\n[[stage]]"),
+                       "quiet_boundary.sides", 17, "not viscous too"));
+}

@@ -111,6 +111,12 @@ TEST(Resume, ExcavationStoppedBeforeAndAfterTheBlocksGoMatchesTheUninterruptedRu
       expect_resume_matches("excavation", kModels + "tunnel_small.toml", {900, 1500, 2500}));
 }
 
+TEST(Resume, InSituStartStoppedWhileItHoldsMatchesTheUninterruptedRun) {
+  // in_situ_small: contacts preloaded before the first step (the energy term 'initial' too).
+  EXPECT_NO_FATAL_FAILURE(
+      expect_resume_matches("in_situ", kModels + "in_situ_small.toml", {300, 700}));
+}
+
 TEST(Resume, DeformableRunMatchesTheUninterruptedRun) {
   EXPECT_NO_FATAL_FAILURE(
       expect_resume_matches("deformable", kModels + "deformable_small.toml", {1200, 3000}));

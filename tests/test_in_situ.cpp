@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <string>
 
+#include "run_support.hpp"
 #include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
@@ -56,4 +59,36 @@ TEST(InSitu, PreloadedContactsHoldAShearStress) {
   const Settled loaded = settle(shear, true, 300), unloaded = settle(shear, false, 300);
   EXPECT_LT(loaded.moved, 0.05 * unloaded.moved);
   EXPECT_LT(loaded.ratio, 1e-3);
+}
+
+namespace {
+struct SupportedRun {
+  double convergence;     // m, the opening's mean convergence
+  double lateral_strain;  // largest |lateral strain| of the run
+};
+
+SupportedRun run_with_sides(const std::string& sides) {
+  const std::filesystem::path out = vorodec::testing::out_dir("in_situ_sides_" + sides);
+  EXPECT_EQ(vorodec::testing::run_vorodec("run " + kModel + " --out " + out.string() +
+                                          " --set loading.sides='\"" + sides + "\"'"),
+            0);
+  const auto rows = vorodec::testing::read_csv(out / "history.csv");
+  double lateral = 0;
+  for (const auto& r : rows) lateral = std::max(lateral, std::abs(r[4]));
+  const std::string summary = vorodec::testing::slurp(out / "summary.json");
+  const auto at = summary.find("\"convergence_m\":");
+  EXPECT_NE(at, std::string::npos);
+  return {std::stod(summary.substr(at + 16)), lateral};
+}
+}  // namespace
+
+TEST(InSitu, RollerAndFixedSidesHoldTheSideBlocksWhereTheStressLetsThemMove) {
+  const SupportedRun stress = run_with_sides("stress"), roller = run_with_sides("roller"),
+                     fixed = run_with_sides("fixed");
+  EXPECT_GT(stress.lateral_strain, 1e-5);  // the sides move out as the opening is dug
+  EXPECT_EQ(roller.lateral_strain, 0.0);   // the side blocks (the gauges) never move across
+  EXPECT_EQ(fixed.lateral_strain, 0.0);
+  EXPECT_GT(roller.convergence, 0.0);
+  // Fixed sides also hold the rock beside them up: the opening converges less.
+  EXPECT_LT(fixed.convergence, 0.8 * roller.convergence);
 }

@@ -61,6 +61,32 @@ loading::QuietBoundary make_quiet_boundary(const io::QuietBoundaryConfig& q,
   return quiet;
 }
 
+// The blocks with an edge on the lateral sides (each once, in block order).
+std::vector<std::uint32_t> side_blocks(const loading::SpecimenBoundary& boundary) {
+  std::vector<std::uint32_t> blocks;
+  for (const loading::BoundaryEdge& e : boundary.lateral_edges()) blocks.push_back(e.block);
+  std::sort(blocks.begin(), blocks.end());
+  blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+  return blocks;
+}
+
+// The supports' reaction, between the step's contact forces and its integration: each side
+// block's load cancels its contact force across the side and its moment (and along the side
+// too for fixed sides), so it keeps a zero velocity there and does not turn.
+void hold_sides(model::Model& m, const solver::Solver& s, const std::vector<std::uint32_t>& blocks,
+                bool fixed) {
+  auto& bl = m.blocks;
+  const model::Point g = s.settings().gravity;
+  for (const std::uint32_t b : blocks) {
+    const model::Point f = s.contact_force(b);
+    bl.fx[b] = -(f.x + bl.gravity_mass[b] * g.x);
+    bl.fy[b] = fixed ? -(f.y + bl.gravity_mass[b] * g.y) : 0.0;
+    bl.moment[b] = -s.contact_moment(b);
+    bl.vx[b] = bl.omega[b] = 0.0;
+    if (fixed) bl.vy[b] = 0.0;
+  }
+}
+
 }  // namespace
 
 QuasiStaticDriver::QuasiStaticDriver(const DriverContext& c)
@@ -75,6 +101,12 @@ QuasiStaticDriver::QuasiStaticDriver(const DriverContext& c)
   outcome_.stalled.assign(cfg_.load_path.stages.size(), false);
   if (cfg_.load_path.stages.empty()) phase_ = Phase::done;
   if (cfg_.quiet_boundary) quiet_.emplace(make_quiet_boundary(*cfg_.quiet_boundary, cfg_, model_));
+  if (cfg_.load_path.sides != loading::SideSupport::stress) {
+    const bool fixed = cfg_.load_path.sides == loading::SideSupport::fixed;
+    solver_.set_face_control([this, fixed, blocks = side_blocks(boundary_)] {
+      hold_sides(model_, solver_, blocks, fixed);
+    });
+  }
   if (cfg_.in_situ) {
     in_situ_ = loading::resolved(*cfg_.in_situ, model_);
     in_situ_mid_xx_ = in_situ_->at(loading::specimen_top(model_) - 0.5 * boundary_.height()).xx;
@@ -189,10 +221,13 @@ void QuasiStaticDriver::step(Observers& observers) {
   // the end conditions), or the load path's confinement.
   const double confinement =
       in_situ_ ? in_situ_mid_xx_ : cfg_.load_path.confinement_at(solver_.time());
-  if (in_situ_)
-    boundary_.apply_stress(model_, *in_situ_);
-  else
-    boundary_.apply_confinement(model_, confinement);
+  // Supported sides take their reaction inside the step (hold_sides).
+  if (cfg_.load_path.sides == loading::SideSupport::stress) {
+    if (in_situ_)
+      boundary_.apply_stress(model_, *in_situ_);
+    else
+      boundary_.apply_confinement(model_, confinement);
+  }
   if (quiet_) quiet_->apply(model_, solver_.time());
   solver_.step();
   state_ = measure::measure_specimen(model_, boundary_, solver_);

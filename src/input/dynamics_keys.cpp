@@ -63,6 +63,13 @@ QuietBoundaryConfig read_quiet_boundary(TomlSection q, const ModelConfig& cfg) {
     q.fail("sides", "name the absorbing sides (or an input_side)");
   if (cfg.deformable.enabled)
     q.fail("sides", "quiet boundaries need rigid blocks ([blocks] deformable = false)");
+  const auto lateral = [](loading::Side s) {
+    return s == loading::Side::left || s == loading::Side::right;
+  };
+  if (cfg.load_path.sides != loading::SideSupport::stress &&
+      (std::any_of(qb.sides.begin(), qb.sides.end(), lateral) ||
+       (qb.input_side && lateral(*qb.input_side))))
+    q.fail("sides", "the left and right sides are supported ([loading] sides): not viscous too");
   q.finish();
   return qb;
 }

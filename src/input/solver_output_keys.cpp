@@ -55,6 +55,19 @@ void read_loading_table(TomlSection& top, ModelConfig& cfg) {
   if (platens != "top" && platens != "both")
     l.fail("platens", "must be \"top\" or \"both\" (got \"" + platens + "\")");
   cfg.load_path.both_platens = platens == "both";
+  const std::string stress = "stress";
+  const std::string sides = l.string("sides", &stress);
+  if (sides == "roller" || sides == "fixed") {
+    cfg.load_path.sides =
+        sides == "roller" ? loading::SideSupport::roller : loading::SideSupport::fixed;
+    if (cfg.load_path.confining_stress != 0)
+      l.fail("sides", "a supported side carries no confining_stress: remove it, or use \"stress\"");
+    if (cfg.deformable.enabled)
+      l.fail("sides",
+             "roller and fixed sides hold rigid blocks only ([blocks] deformable = false)");
+  } else if (sides != "stress") {
+    l.fail("sides", "must be \"stress\", \"roller\" or \"fixed\" (got \"" + sides + "\")");
+  }
   l.finish();
 }
 

@@ -85,8 +85,14 @@ struct CyclicBlock {
 // Appends the 2 x n stages of a cyclic block.
 void append_cycles(const CyclicBlock& block, std::vector<Stage>& stages);
 
+// What holds the lateral sides: a traction (the confinement or the in-situ stress), or a rigid
+// support whose reaction keeps the blocks on the side from moving across it (roller) or at all
+// (fixed).
+enum class SideSupport { stress, roller, fixed };
+
 struct LoadPath {
   double confining_stress = 0.0;  // Pa, traction on the lateral boundary (compression +)
+  SideSupport sides = SideSupport::stress;
   // s: the confinement rises linearly from 0 over this time from the path's start, as a
   // laboratory brings it on (0: all at once, a step the specimen rings from without damping).
   double confining_ramp_time = 0.0;

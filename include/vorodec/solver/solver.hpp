@@ -89,6 +89,8 @@ class Solver {
   const std::vector<std::unique_ptr<laws::LawGroup>>& laws() const { return laws_; }
   // Sum of contact forces on block b in the last step (reaction of a platen), N per m.
   model::Point contact_force(std::size_t b) const { return {sums_[b].fx, sums_[b].fy}; }
+  double contact_moment(std::size_t b) const { return sums_[b].m; }  // N m per m, about b
+  const SolverSettings& settings() const { return settings_; }
   // The part of it from contacts with blocks of group g (a block bar's platen: the specimen's).
   model::Point contact_force_from(std::size_t b, model::Group g) const;
   // Unbalanced-force ratio of the last step: the mean over free bodies (specimen blocks and
