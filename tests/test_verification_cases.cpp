@@ -59,6 +59,10 @@ TEST(Verification, R1KirschHoleWallClosesByTheElasticSolution) {
 TEST(Verification, R3RoofWedgeFallsBelowItsLimitFrictionAndStaysAbove) {
   for (const auto& r : r3_roof_wedge()) EXPECT_TRUE(passes(r));
 }
+TEST(Verification, R4InSituStartCarriesTheFieldThroughEveryCut) {
+  for (const auto& r : r4_in_situ_start(VORODEC_SOURCE_DIR))
+    EXPECT_TRUE(passes(r)) << r.name << ": " << r.measured << " against " << r.expected;
+}
 TEST(Verification, J0JointSeparatesBlockPairsAlongItsWholeChord) {
   for (const double dip : {0.0, 30.0, 60.0, 90.0}) EXPECT_TRUE(passes(j0_joint_length(dip)));
 }

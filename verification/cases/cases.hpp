@@ -62,6 +62,8 @@ std::vector<CaseResult> r1_kirsch(double h);
 // R3: a roof wedge clamped between two abutments under gravity, 1 deg of friction either side of
 // its limit equilibrium (fast: part of the unit tests too): expected 1 = falls, 0 = stays.
 std::vector<CaseResult> r3_roof_wedge();
+// R4: the forces through cuts of a rock mass started under its in-situ stress.
+std::vector<CaseResult> r4_in_situ_start(const std::string& source_dir);
 // The rock-mass cases (R, J), run by `vorodec_verify --rock-only` into their own section.
 std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::string& binary);
 

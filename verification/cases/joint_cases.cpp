@@ -318,6 +318,7 @@ std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::str
     rows.push_back(r);
   for (const double dip : {0.0, 30.0, 50.0, 60.0, 75.0, 90.0}) rows.push_back(j0_joint_length(dip));
   for (auto& r : r3_roof_wedge()) rows.push_back(std::move(r));
+  for (auto& r : r4_in_situ_start(source_dir)) rows.push_back(std::move(r));
   for (auto& r : j1_single_plane_of_weakness(source_dir, binary)) rows.push_back(std::move(r));
   return rows;
 }
