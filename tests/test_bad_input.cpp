@@ -727,3 +727,12 @@ TEST(BadInput, SideSupportsThatContradictTheLoadingAreRejected) {
                                "sides = [\"left\"]\n[[stage]]"),
                        "quiet_boundary.sides", 17, "not viscous too"));
 }
+
+TEST(BadInput, GradualReleaseOfZonedBlocksIsRejected) {
+  const std::string zoned = replace(
+      excavation("circle = { centre = [0.01, 0.02], radius = 0.004 }\nrelaxation_time = 0.005"),
+      "density = 2600",
+      "density = 2600\ndeformable = true\nzone_size = 0.004\nE = 50e9\nnu = 0.25");
+  EXPECT_TRUE(rejected("excavation_zoned_relaxation", zoned, "stage[1].relaxation_time", 25,
+                       "rigid blocks"));
+}

@@ -137,3 +137,38 @@ TEST(Excavation, GradualReleaseHoldsTheOpeningBackWhileItLasts) {
   EXPECT_LT(convergence_at(slow, t), 0.8 * convergence_at(sudden, t));
   EXPECT_GT(convergence_at(slow, t), 0.0);
 }
+
+TEST(Excavation, ZonedBlocksAreDugOutWithTheirGridpointsHeld) {
+  const std::string zoned = std::string(VORODEC_SOURCE_DIR) + "/tests/models/tunnel_zoned.toml";
+  const io::ModelConfig cfg = run::read_model_file(zoned);
+  run::PreparedModel p = run::prepare_model(cfg, run::make_specimen(cfg));
+  const auto& bl = p.model->blocks;
+  const auto& z = p.model->zoning;
+  std::vector<std::uint32_t> inside;
+  for (std::uint32_t b = 0; b < bl.size(); ++b)
+    if (bl.group[b] == model::Group::specimen && std::hypot(bl.x[b] - 1.0, bl.y[b] - 1.0) < 0.4)
+      inside.push_back(b);
+  ASSERT_GT(inside.size(), 10u);
+  ASSERT_TRUE(bl.deformable[inside[0]]);
+  p.solver->remove_blocks(inside);
+  std::size_t held = 0;
+  for (std::size_t g = 0; g < z.gridpoints(); ++g) held += z.block[g] == inside[0];
+  ASSERT_GT(held, 3u);
+  for (const auto& c : p.model->contacts)
+    EXPECT_TRUE(c.a != static_cast<std::int32_t>(inside[0]) &&
+                c.b != static_cast<std::int32_t>(inside[0]));
+  std::vector<double> x(z.x), y(z.y);
+  for (int k = 0; k < 50; ++k) p.solver->step();  // under gravity
+  for (std::size_t g = 0; g < z.gridpoints(); ++g)
+    if (z.block[g] == inside[0]) {
+      EXPECT_EQ(z.x[g], x[g]);
+      EXPECT_EQ(z.y[g], y[g]);
+    }
+  // The whole stage: the opening converges, and the dug zones leave the VTK frames.
+  const std::filesystem::path out = vorodec::testing::out_dir("excavation_zoned");
+  ASSERT_EQ(vorodec::testing::run_vorodec("run " + zoned + " --out " + out.string()), 0);
+  const std::string summary = vorodec::testing::slurp(out / "summary.json");
+  const auto at = summary.find("\"convergence_m\":");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_GT(std::stod(summary.substr(at + 16)), 1e-5);
+}

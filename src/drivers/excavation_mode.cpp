@@ -82,8 +82,6 @@ std::shared_ptr<const loading::ExtensionSettings> ExcavationMode::read_stage(
   st.target_stress = sec.positive("target_stress", laws::required);
   st.platen_velocity = sec.positive("platen_velocity", 0.05);
   st.end.duration = sec.positive("end_time", laws::required);  // s, after the blocks go
-  if (cfg.deformable.enabled)
-    sec.fail("control", "excavation stages need rigid blocks ([blocks] deformable = false)");
   const geometry::Point size =
       cfg.tessellation.outline.kind == geometry::OutlineKind::disc
           ? Point{cfg.tessellation.outline.diameter, cfg.tessellation.outline.diameter}
@@ -124,6 +122,10 @@ std::shared_ptr<const loading::ExtensionSettings> ExcavationMode::read_stage(
   e->relaxation_time = sec.non_negative("relaxation_time", 0.0);
   if (e->relaxation_time > st.end.duration)
     sec.fail("relaxation_time", "must not exceed the stage's end_time");
+  if (e->relaxation_time > 0 && cfg.deformable.enabled)
+    sec.fail("relaxation_time",
+             "a gradual release needs rigid blocks ([blocks] deformable = "
+             "false): zoned lining blocks take loads at their gridpoints");
   for (const loading::Stage& earlier : cfg.load_path.stages)
     if (earlier.mode == keys.control &&
         overlap(excavation_settings(earlier).outline(), e->outline()))

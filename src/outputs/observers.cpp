@@ -214,6 +214,7 @@ io::VtkFrame make_frame(const RunView& v) {
   }
   const model::Zoning& z = m.zoning;
   for (std::size_t i = 0; i < z.zones.size(); ++i) {
+    if (bl.group[z.zone_block[i]] == model::Group::excavated) continue;  // not drawn
     for (const std::uint32_t g : z.zones[i].gp) f.zone_points.push_back({z.x[g], z.y[g]});
     f.zone_block.push_back(static_cast<std::int32_t>(z.zone_block[i]));
     f.zone_stress.push_back({z.sxx[i], z.syy[i], z.sxy[i], z.szz[i]});

@@ -40,10 +40,18 @@ void Solver::initialise() {
 
 void Solver::remove_blocks(std::span<const std::uint32_t> blocks) {
   auto& bl = model_.blocks;
+  auto& z = model_.zoning;
   for (const std::uint32_t b : blocks) {
     bl.group[b] = model::Group::excavated;
     bl.prescribed[b] = 1;
     bl.vx[b] = bl.vy[b] = bl.omega[b] = 0.0;
+    if (!bl.deformable[b]) continue;
+    for (std::size_t k = 0; k < z.blocks.size(); ++k)  // a zoned block's gridpoints held too
+      if (z.blocks[k] == b)
+        for (std::uint32_t g = z.gp_begin[k]; g < z.gp_end[k]; ++g) {
+          z.prescribed[g] = 1;
+          z.vx[g] = z.vy[g] = 0.0;
+        }
   }
   detect(false);
 }

@@ -57,8 +57,9 @@ CaseResult r2_normal_closure();
 CaseResult j0_joint_length(double dip_deg);
 // R1: a circular hole in an elastic domain of four zoned blocks under Kirsch's boundary
 // tractions: sigma_r, sigma_theta along the axes and the wall's radial displacement, at zone size
-// h (m; the hole's radius is 1 m).
-std::vector<CaseResult> r1_kirsch(double h);
+// h (m; the hole's radius is 1 m). dug (R5): the hole starts filled by a zoned plug under the far
+// field, which an excavation removes; the wall's displacement is then measured from before.
+std::vector<CaseResult> r1_kirsch(double h, bool dug = false);
 // R3: a roof wedge clamped between two abutments under gravity, 1 deg of friction either side of
 // its limit equilibrium (fast: part of the unit tests too): expected 1 = falls, 0 = stays.
 std::vector<CaseResult> r3_roof_wedge();

@@ -313,6 +313,8 @@ std::vector<CaseResult> rock_cases(const std::string& source_dir, const std::str
       rows.push_back(r);
     }
   for (const CaseResult& r : ladder.back()) rows.push_back(r);
+  // R5: the same hole dug out of the loaded plate by an excavation, at the finest rung.
+  for (const CaseResult& r : r1_kirsch(0.025, true)) rows.push_back(r);
   for (CaseResult r :
        {r2_peak_strength(), r2_residual_strength(), r2_dilation(), r2_normal_closure()})
     rows.push_back(r);

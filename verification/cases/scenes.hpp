@@ -28,6 +28,8 @@ inline std::unique_ptr<solver::Solver> make_solver(model::Model& m, const char* 
   solver::LawTable table;
   for (auto& row : table.law) row.fill(0);
   table.law[1][1] = table.law[1][2] = table.law[2][1] = table.law[2][2] = -1;
+  const auto gone = static_cast<std::size_t>(model::Group::excavated);
+  for (std::size_t g = 0; g < model::kGroups; ++g) table.law[g][gone] = table.law[gone][g] = -1;
   if (s.contact_tolerance <= 0) s.contact_tolerance = m.rounding_length;
   auto solver = std::make_unique<solver::Solver>(m, std::move(groups), table, s);
   solver->initialise();

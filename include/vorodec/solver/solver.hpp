@@ -99,8 +99,8 @@ class Solver {
   double unbalanced_force_ratio() const;
   // N/m, summed spring stiffness of the contacts touching block b (servo gain).
   double contact_stiffness_on(std::size_t b) const;
-  // Excavation: the rigid blocks go to Group::excavated, held still, and their contacts (bonds
-  // too) are deleted at once.
+  // Excavation: the blocks go to Group::excavated, held still (a zoned block's gridpoints too),
+  // and their contacts (bonds too) are deleted at once.
   void remove_blocks(std::span<const std::uint32_t> blocks);
   // Throws InstabilityError if the state is not finite or contacts overlap by more than d/2.
   void check_stability() const;
