@@ -699,11 +699,6 @@ TEST(BadInput, InSituStressThatTheModelCannotHoldIsRejected) {
   EXPECT_TRUE(rejected("in_situ_shear",
                        std::string(good_model) + "[in_situ]\nstress = [5e6, 10e6, 1e6]\n",
                        "in_situ.stress", 18, "bonded = true"));
-  EXPECT_TRUE(rejected("in_situ_zoned",
-                       replace(std::string(good_model) + in_situ, "density = 2600",
-                               "density = 2600\ndeformable = true\nzone_size = 0.004\n"
-                               "E = 50e9\nnu = 0.25"),
-                       "in_situ.stress", 22, "deformable"));
   const std::string creep = replace(std::string(good_model) + in_situ,
                                     "jkn = 2e13\njks = 8e12\ntension = 10e6\ncohesion = 20e6\n"
                                     "friction = 30",

@@ -117,6 +117,14 @@ TEST(Resume, InSituStartStoppedWhileItHoldsMatchesTheUninterruptedRun) {
       expect_resume_matches("in_situ", kModels + "in_situ_small.toml", {300, 700}));
 }
 
+TEST(Resume, ZonedInSituStartMatchesTheUninterruptedRun) {
+  // The zones' in-situ stress comes again from the model file.
+  EXPECT_NO_FATAL_FAILURE(expect_resume_matches(
+      "in_situ_zoned", kModels + "in_situ_small.toml", {300, 1500},
+      " --set blocks.deformable=true --set blocks.zone_size=0.05 --set blocks.E=30e9"
+      " --set blocks.nu=0.25"));
+}
+
 TEST(Resume, DeformableRunMatchesTheUninterruptedRun) {
   EXPECT_NO_FATAL_FAILURE(
       expect_resume_matches("deformable", kModels + "deformable_small.toml", {1200, 3000}));

@@ -32,12 +32,29 @@ double shared_length(const model::Blocks& bl, std::int32_t a, model::Point p0, m
   return on_line < 2 ? 0.0 : std::max(0.0, std::min(hi, edge) - std::max(lo, 0.0));
 }
 
+// Each zone starts with the field at its centroid (tension positive, as zones count it).
+void preload_zones(model::Zoning& z, solver::Solver& solver, const loading::InSituStress& field) {
+  auto& q = z.arrays;
+  const std::size_t n = z.zones.size();
+  for (auto* v : {&q.s0xx, &q.s0yy, &q.s0xy}) v->assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& gp = z.zones[i].gp;
+    const double y = (z.y0[gp[0]] + z.y0[gp[1]] + z.y0[gp[2]]) / 3.0;
+    const loading::StressTensor s = field.at(y);
+    q.s0xx[i] = z.sxx[i] = -s.xx;
+    q.s0yy[i] = z.syy[i] = -s.yy;
+    q.s0xy[i] = z.sxy[i] = -s.xy;
+  }
+  solver.add_initial_energy(model::zone_strain_energy(z));
+}
+
 }  // namespace
 
 // The traction s.n_e per unit length (n_e the shared edge's normal): every block starts in
 // equilibrium under a uniform field, and under a field whose gradient balances gravity.
-void preload_contacts(model::Model& model, solver::Solver& solver,
-                      const loading::InSituStress& field) {
+void preload_in_situ(model::Model& model, solver::Solver& solver,
+                     const loading::InSituStress& field) {
+  if (!model.zoning.empty()) preload_zones(model.zoning, solver, field);
   const model::Blocks& bl = model.blocks;
   std::map<std::pair<std::int32_t, std::int32_t>, std::vector<std::size_t>> pairs;
   std::vector<model::ContactFrame> frames;
@@ -47,16 +64,18 @@ void preload_contacts(model::Model& model, solver::Solver& solver,
     pairs[{std::min(c.a, c.b), std::max(c.a, c.b)}].push_back(i);
   }
   for (const auto& [blocks, members] : pairs) {
-    // The shared edge: the edge of the second block that the first lies along the longest.
-    double shared = 0;
+    // The shared boundary: the second block's edges that the first lies along (a zoned block's
+    // edge is several collinear ones), its normal that of the longest.
+    double shared = 0, longest = 0;
     model::Point n{0, 0};  // from the second block towards the first
     const auto second = static_cast<std::size_t>(blocks.second);
     for (std::uint32_t e = bl.corner_begin[second]; e < bl.corner_begin[second + 1]; ++e) {
       const model::Point p0 = bl.world[e].corner, p1 = bl.world[bl.shape[e].next].corner;
       const model::Point u = (1.0 / std::sqrt(dot(p1 - p0, p1 - p0))) * (p1 - p0);
       const double length = shared_length(bl, blocks.first, p0, p1, u, {u.y, -u.x});
-      if (length > shared) {
-        shared = length;
+      shared += length;
+      if (length > longest) {
+        longest = length;
         n = {u.y, -u.x};
       }
     }

@@ -219,7 +219,7 @@ PreparedModel prepare_model(const io::ModelConfig& cfg, const geometry::Tessella
   if (settings.contact_tolerance <= 0) settings.contact_tolerance = d;
   s.solver = std::make_unique<solver::Solver>(*s.model, std::move(groups), table, settings);
   s.solver->initialise();
-  if (cfg.in_situ) preload_contacts(*s.model, *s.solver, loading::resolved(*cfg.in_situ, *s.model));
+  if (cfg.in_situ) preload_in_situ(*s.model, *s.solver, loading::resolved(*cfg.in_situ, *s.model));
   return s;
 }
 

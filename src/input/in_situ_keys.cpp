@@ -29,10 +29,6 @@ loading::InSituStress read_in_situ(TomlSection s, const ModelConfig& cfg) {
   if (s.has("datum_y")) f.datum_y = s.number("datum_y", laws::required);
   if (cfg.load_path.confining_stress != 0.0)
     s.fail("stress", "the in-situ stress holds the sides itself: remove loading.confining_stress");
-  if (cfg.deformable.enabled)
-    s.fail("stress",
-           "the in-situ stress is set into contacts only: zoned blocks ([blocks] "
-           "deformable = true) take it by boundary loading stages");
   if ((f.stress.xy != 0.0 || f.gradient.xy != 0.0) && !cfg.platens_bonded)
     s.fail("stress",
            "a shear stress xy needs platens that hold it: [platens] bonded = true "

@@ -9,8 +9,8 @@ namespace vorodec::model {
 // below) or comes again from the model file or the loaded state (say so there); then update these
 // sizes.
 static_assert(sizeof(Blocks) == 624, "Blocks changed: see state()");
-static_assert(sizeof(Zoning) == 1440, "Zoning changed: see state()");
-static_assert(sizeof(Model) == 2104, "Model changed: see state()");
+static_assert(sizeof(Zoning) == 1512, "Zoning changed: see state()");
+static_assert(sizeof(Model) == 2176, "Model changed: see state()");
 static_assert(sizeof(Contact) == 88, "Contact changed: see state()");
 
 namespace {
@@ -28,8 +28,8 @@ void state(Archive& ar, M& m) {
   // Deformable blocks' corner arcs and edge constants follow their gridpoints.
   ar(pod(b.shape));
   ar(pod(m.contacts));
-  // The zones' and corners' arrays come again from the model file; their scratch is redone in
-  // every step.
+  // The zones' and corners' arrays (the in-situ stress too) come again from the model file; their
+  // scratch is redone in every step.
   auto& z = m.zoning;
   ar(pod(z.x), pod(z.y), pod(z.vx), pod(z.vy), pod(z.mass), pod(z.fx), pod(z.fy), pod(z.cfx),
      pod(z.cfy), pod(z.prescribed), pod(z.sxx), pod(z.syy), pod(z.sxy), pod(z.szz), pod(z.exx),

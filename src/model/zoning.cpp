@@ -209,16 +209,13 @@ void refresh_deformable(Model& model) {
   refresh_corners(model);
 }
 
-void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
+namespace {
+
+// Each zone's strain, stress and corner forces from the displacements q.ux, q.uy; `in_situ`: with
+// the stress the zone started with (a separate instance, so a zoning without one pays nothing).
+template <bool in_situ>
+void stress_zones(Zoning& z) {
   ZoneArrays& q = z.arrays;
-  const auto ng = static_cast<std::int64_t>(z.gridpoints());
-  const double *x = z.x.data(), *y = z.y.data(), *x0 = z.x0.data(), *y0 = z.y0.data();
-  double *ux_w = q.ux.data(), *uy_w = q.uy.data();
-#pragma omp parallel for simd schedule(simd : static) if (ng >= 2048)
-  for (std::int64_t g = 0; g < ng; ++g) {
-    ux_w[g] = x[g] - x0[g];
-    uy_w[g] = y[g] - y0[g];
-  }
   const auto nz = static_cast<std::int64_t>(z.zones.size());
   const double *ux = q.ux.data(), *uy = q.uy.data();
   const std::uint32_t *g0 = q.gp[0].data(), *g1 = q.gp[1].data(), *g2 = q.gp[2].data();
@@ -229,6 +226,7 @@ void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& ou
   double *fy0 = q.fy[0].data(), *fy1 = q.fy[1].data(), *fy2 = q.fy[2].data();
   double *sxx = z.sxx.data(), *syy = z.syy.data(), *sxy = z.sxy.data(), *szz = z.szz.data();
   double *exx_w = z.exx.data(), *eyy_w = z.eyy.data(), *gxy_w = z.gxy.data();
+  const double *s0xx = q.s0xx.data(), *s0yy = q.s0yy.data(), *s0xy = q.s0xy.data();
   // Every zone on its own, the same arithmetic in the vector body and the remainder: the result
   // does not depend on how the zones are split between threads.
 #pragma omp parallel for simd schedule(simd : static) if (nz >= 2048)
@@ -247,10 +245,16 @@ void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& ou
     const double exx = cs * a + sn * c - 1.0, eyy = cs * d - sn * b - 1.0;
     const double exy = cs * b + sn * d;  // U is symmetric: the tensor shear strain
     const double vol = lambda[i] * (exx + eyy);
-    const double txx = vol + 2.0 * shear[i] * exx, tyy = vol + 2.0 * shear[i] * eyy;
-    const double txy = 2.0 * shear[i] * exy;
-    // Nominal stress P = R T (T the Biot stress D (U - I)), the derivative of the zone's energy
-    // A0 T:(U - I) / 2 by F: F^k = -A0 P . grad N_k.
+    double txx = vol + 2.0 * shear[i] * exx, tyy = vol + 2.0 * shear[i] * eyy;
+    double txy = 2.0 * shear[i] * exy;
+    if constexpr (in_situ) {
+      txx += s0xx[i];
+      tyy += s0yy[i];
+      txy += s0xy[i];
+    }
+    // Nominal stress P = R T (T the Biot stress T0 + D (U - I), T0 the in-situ stress), the
+    // derivative of the zone's energy A0 (T0:(U - I) + (U - I):D:(U - I) / 2) by F:
+    // F^k = -A0 P . grad N_k.
     const double pxx = cs * txx - sn * txy, pxy = cs * txy - sn * tyy;
     const double pyx = sn * txx + cs * txy, pyy = sn * txy + cs * tyy;
     const double A = area[i];
@@ -270,6 +274,24 @@ void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& ou
     eyy_w[i] = s2 * exx + 2.0 * cssn * exy + c2 * eyy;
     gxy_w[i] = 2.0 * (cssn * (exx - eyy) + (c2 - s2) * exy);
   }
+}
+
+}  // namespace
+
+void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
+  ZoneArrays& q = z.arrays;
+  const auto ng = static_cast<std::int64_t>(z.gridpoints());
+  const double *x = z.x.data(), *y = z.y.data(), *x0 = z.x0.data(), *y0 = z.y0.data();
+  double *ux_w = q.ux.data(), *uy_w = q.uy.data();
+#pragma omp parallel for simd schedule(simd : static) if (ng >= 2048)
+  for (std::int64_t g = 0; g < ng; ++g) {
+    ux_w[g] = x[g] - x0[g];
+    uy_w[g] = y[g] - y0[g];
+  }
+  if (q.s0xx.empty())
+    stress_zones<false>(z);
+  else
+    stress_zones<true>(z);
   out_fx.resize(z.gridpoints());
   out_fy.resize(z.gridpoints());
 #pragma omp parallel for schedule(static) if (ng >= 2048)
@@ -308,6 +330,15 @@ std::vector<double> zone_stiffness_bound(const Zoning& z) {
 
 double zone_strain_energy(const Zoning& z) {
   double e = 0.0;
+  if (!z.arrays.s0xx.empty()) {  // from the stress alone: s.D^-1.s / 2 (it has no strain origin)
+    for (std::size_t i = 0; i < z.zones.size(); ++i) {
+      const double l = z.zones[i].lambda, g = z.zones[i].shear, p = l + 2.0 * g;
+      const double sx = z.sxx[i], sy = z.syy[i], t = z.sxy[i];
+      e += 0.5 * z.zones[i].area *
+           ((p * (sx * sx + sy * sy) - 2.0 * l * sx * sy) / (4.0 * g * (l + g)) + t * t / g);
+    }
+    return e;
+  }
   for (std::size_t i = 0; i < z.zones.size(); ++i) {
     e += 0.5 * z.zones[i].area * (z.sxx[i] * z.exx[i] + z.syy[i] * z.eyy[i] + z.sxy[i] * z.gxy[i]);
   }

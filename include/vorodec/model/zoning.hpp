@@ -49,6 +49,9 @@ struct ZoneArrays {
   std::vector<double> area, lambda, shear;
   std::vector<double> ux, uy;                 // m, per gridpoint: displacement this step
   std::array<std::vector<double>, 3> fx, fy;  // N per m, per zone: force on each corner
+  // Pa, per zone: the in-situ stress it started with (tension positive, the zone's initial frame),
+  // added to its elastic stress; empty: none (docs/theory.md §6.7).
+  std::vector<double> s0xx, s0yy, s0xy;
 };
 
 // The boundary gridpoints of the deformable blocks as corners, all blocks in one list (block

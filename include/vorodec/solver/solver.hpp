@@ -112,6 +112,8 @@ class Solver {
   // In-situ stress: contact i carries (fn, fs) N at its gap; its strain energy is the energy term
   // `initial`. False if its law cannot start loaded.
   bool preload(std::size_t i, double fn, double fs);
+  // In-situ stress in the zones: their strain energy (J per m) joins the term `initial`.
+  void add_initial_energy(double e) { energy_.initial += e; }
   // Breaks contact i's bond: a crack of `type` at `time` s (the corrosion clock).
   void break_bond(std::size_t i, laws::ContactEvent type, double time);
   // Called in every step between the contact forces and the integration: prescribed velocities
