@@ -17,7 +17,7 @@ packages=(
   pybind11-dev python3-dev
   # MPI for `vorodec batch` across machines (mpirun; optional at build time, used by the tests).
   libopenmpi-dev openmpi-bin
-  xvfb xauth
+  xvfb
   # pvbatch for tests/run_paraview_check.sh (~37 packages, removes nothing). Its python3-paraview
   # conflicts with python3-vtk9 (needed by libvtk9-dev): never install it, the check unpacks its
   # .deb privately.

@@ -32,8 +32,7 @@ fi
 png="${2:-${pvd%.pvd}_last.png}"
 array=("${@:3}")
 
-command -v xvfb-run >/dev/null 2>&1 || skip "xvfb-run not found (Debian package xvfb; see scripts/install-deps.sh)"
-command -v xauth >/dev/null 2>&1 || skip "xauth not found (Debian package xauth; see scripts/install-deps.sh)"
+command -v Xvfb >/dev/null 2>&1 || skip "Xvfb not found (Debian package xvfb; see scripts/install-deps.sh)"
 command -v pvbatch >/dev/null 2>&1 || skip "pvbatch not found (Debian package paraview; see scripts/install-deps.sh)"
 
 pv_version="$(dpkg-query -W -f='${Version}' paraview 2>/dev/null)" ||
@@ -78,18 +77,45 @@ fi
 mkdir -p "$(dirname "$png")"
 rm -f "$png"
 log="$(mktemp)"
-trap 'rm -f "$log"' EXIT
 start=$(date +%s.%N)
-# xvfb-run -a can race another X server for a display number under load ("bad X server
-# connection"); that is the machine, not the series: retry a few times.
+# Our own Xvfb with -displayfd: the server binds the first free display itself, so it cannot race
+# another server for a number (xvfb-run -a picks a number from lock files and does not wait for its
+# server to exit, which under load gave "bad X server connection"). It is stopped and reaped before
+# the script ends.
+xvfb_pid=""
+stop_xvfb() {
+  if [ -n "$xvfb_pid" ]; then
+    kill "$xvfb_pid" 2>/dev/null
+    wait "$xvfb_pid" 2>/dev/null
+    xvfb_pid=""
+  fi
+}
+trap 'stop_xvfb; rm -f "$log" "$log.display" "$log.xvfb"' EXIT
 for attempt in 1 2 3; do
-  PYTHONPATH="${pythonpath}${PYTHONPATH:+:$PYTHONPATH}" \
-    xvfb-run -a -s "-screen 0 1280x1024x24" \
+  : >"$log.display"
+  Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$log.display" >"$log.xvfb" 2>&1 &
+  xvfb_pid=$!
+  display=""
+  for _ in $(seq 1 100); do
+    display="$(tr -dc '0-9' <"$log.display")"
+    [ -n "$display" ] && break
+    kill -0 "$xvfb_pid" 2>/dev/null || break
+    sleep 0.1
+  done
+  if [ -z "$display" ]; then
+    echo "run_paraview_check: Xvfb did not start (attempt $attempt):" >&2
+    sed 's/^/  Xvfb: /' "$log.xvfb" >&2
+    stop_xvfb
+    rc=1
+    continue
+  fi
+  PYTHONPATH="${pythonpath}${PYTHONPATH:+:$PYTHONPATH}" DISPLAY=":$display" \
     pvbatch "$here/paraview_check.py" "$pvd" "$png" "${array[@]}" >"$log" 2>&1
   rc=$?
+  stop_xvfb
   grep -q "bad X server connection" "$log" || break
-  echo "run_paraview_check: X server not reachable (attempt $attempt), retrying" >&2
-  sleep 2
+  echo "run_paraview_check: X server :$display not reachable (attempt $attempt), retrying" >&2
+  sed 's/^/  Xvfb: /' "$log.xvfb" >&2
 done
 end=$(date +%s.%N)
 cat "$log"
