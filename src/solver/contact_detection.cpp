@@ -97,8 +97,13 @@ bool faces_arc(const Blocks& bl, std::uint32_t a, std::uint32_t k, Point n) {
   const Point m{-n.x, -n.y};  // from the arc's centre towards the contact
   const Point n_in{e_in.y, -e_in.x}, n_out{e_out.y, -e_out.x};
   const double tol = 1e-6;
-  return cross(n_in, m) >= -tol * std::sqrt(dot(n_in, n_in)) &&
-         cross(m, n_out) >= -tol * std::sqrt(dot(n_out, n_out));
+  const double l_in = std::sqrt(dot(n_in, n_in)), l_out = std::sqrt(dot(n_out, n_out));
+  // The two cross products alone also pass -m when the corner is straight up to round-off (its
+  // normals parallel): a back corner of a thin block then "faces" the far side, and its arc's
+  // virtual circle, poking through the block, is taken for an overlap. m must lie on the arc's
+  // side of it: positive against the normals' bisector.
+  return cross(n_in, m) >= -tol * l_in && cross(m, n_out) >= -tol * l_out &&
+         dot(m, n_in) * l_out + dot(m, n_out) * l_in > 0.0;
 }
 
 struct Candidate {
