@@ -5,7 +5,8 @@ For each results folder RUN:
   RUN/shpb_waves.png      the gauges' strains as recorded: incident and reflected on the incident
                           bar, transmitted on the transmitted bar
   RUN/shpb_faces.png      the incident-face and transmitted-face stresses, the three-wave and the
-                          face-force stresses, and the equilibrium factor eta against time
+                          face-force stresses, and the equilibrium factor eta against time with
+                          the end of the ring-up and [Li2018]'s ±8 % band
   RUN/shpb_fragments.png  cumulative fragment-size distribution (equivalent diameters)
 With --series OUT_PREFIX over several folders (a striker-speed series):
   OUT_PREFIX_stress_strain.png  dynamic stress-strain curves per striker speed
@@ -70,10 +71,15 @@ def one_run(run):
     ax2.plot(t, eta, "r", lw=0.8, label="eta")
     ax2.axhline(0.05, color="r", ls="--", lw=0.5)
     ax2.axhline(-0.05, color="r", ls="--", lw=0.5)
+    ax2.axhspan(-0.08, 0.08, color="r", alpha=0.08, lw=0)
+    ring_up = s["shpb"].get("ring_up_time_s")
+    if ring_up is not None and np.isfinite(ring_up):
+        ax2.axvline(ring_up * 1e6, color="0.4", ls="-.", lw=0.8)
+        ax2.text(ring_up * 1e6, -0.95, " end of ring-up (3 transits)", fontsize=7, color="0.3")
     ax2.set_ylim(-1, 1)
     ax2.set_ylabel("equilibrium factor eta", color="r")
     ax.legend(fontsize=8, loc="upper left")
-    ax.set_title("face stresses, striker %g m/s (eta within ±0.05 dashed)" % speed)
+    ax.set_title("face stresses, striker %g m/s (eta: ±0.05 dashed, ±0.08 shaded)" % speed)
     fig.tight_layout()
     fig.savefig(os.path.join(run, "shpb_faces.png"), dpi=120)
     plt.close(fig)

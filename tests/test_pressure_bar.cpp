@@ -62,6 +62,27 @@ TEST(ThreeWave, EquilibratedSpecimenHasEtaZeroAndTheTransmittedStress) {
   EXPECT_NEAR(m.incident_energy, 2e11 * 5000 * 0.05 * 1e-6 * 1e-4, 1e-9);
 }
 
+// A ramp whose transmitted face starts 10 us late (one transit) and lags 40 % behind at first,
+// 5 % from 30 us on: the ring-up ends at three transit times, 30 us, and only the lag after it
+// counts.
+TEST(ThreeWave, EtaAfterTheRingUpCountsFromThreeTransitTimes) {
+  const measure::BarPair bars{{5000, 2e11, 0.05}, {5000, 2e11, 0.05}, 0.05, 0.025};
+  std::vector<double> t, ei, er, et;
+  for (int k = 0; k <= 60; ++k) {
+    const double time = k * 1e-6, s1 = 1e-5 * k;  // eps_I + eps_R, rising to the peak at 60 us
+    const double s2 = k < 10 ? 0.0 : (k < 30 ? 0.6 : 0.95) * s1;
+    t.push_back(time);
+    ei.push_back(2e-3);
+    er.push_back(s1 - 2e-3);
+    et.push_back(s2);
+  }
+  const auto p = measure::three_wave(bars, t, ei, er, et);
+  const measure::DynamicMeasures m = measure::dynamic_measures(bars, p);
+  ASSERT_TRUE(m.valid);
+  EXPECT_NEAR(m.ring_up_time, 30e-6, 1e-12);
+  EXPECT_NEAR(m.eta_after_ring_up, 2.0 * 0.05 / 1.95, 1e-12);
+}
+
 using vorodec::testing::json_number;
 using vorodec::testing::slurp;
 

@@ -161,10 +161,13 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
   for (const ShpbRun& r : v.runs) {
     const std::string settings =
         fmt::format("models/shpb_granite.toml, striker {} m/s, {}", r.speed, r.status);
-    // The paper's law holds over its equilibrated rates, 48-334 1/s: judged there only.
-    const bool judged = r.rate >= 48 && r.rate <= 334;
+    // The paper's law holds over its rates, 48-334 1/s, and for specimens loaded to failure:
+    // its class II ("a class I sample is not in a failure state", its strength commonly below
+    // the static one). Judged there only.
+    const bool judged = r.class_two && r.rate >= 48 && r.rate <= 334;
     CaseResult c{"B5",
-                 fmt::format("DIF at {:.0f} 1/s (striker {} m/s)", r.rate, r.speed),
+                 fmt::format("DIF at {:.0f} 1/s (striker {} m/s, class {})", r.rate, r.speed,
+                             r.class_two ? "II" : "I"),
                  source,
                  dif(r.rate),
                  r.strength / v.static_strength,
@@ -174,10 +177,21 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
                  r.seconds,
                  !judged};
     rows.push_back(c);
-    if (r.speed == 10.0)
+    if (r.speed == 10.0) {
+      rows.push_back(
+          {"B5",
+           fmt::format("equilibrium factor |eta| after the ring-up ({:.1f} us) to the peak, 10 m/s",
+                       r.ring_up * 1e6),
+           "[Li2018]: within 8 % after its 36 us ring-up, at 10 m/s", 0.0, r.eta_ring_up,
+           r.eta_ring_up, 0.08,
+           settings + "; ring-up: three transit times, each the first arrival at the "
+                      "transmitted face",
+           r.seconds});
       rows.push_back({"B5", "equilibrium factor |eta| from half the peak to the peak, 10 m/s",
-                      "[Li2018]: within 8 % at 10 m/s", 0.0, r.eta_loading, r.eta_loading, 0.08,
-                      settings, r.seconds});
+                      "stricter than [Li2018]'s measure: half the peak comes before the ring-up "
+                      "ends",
+                      0.0, r.eta_loading, r.eta_loading, 0.08, settings, r.seconds, true});
+    }
     if (r.speed == 5.0 || r.speed == 10.0) {
       const bool want_two = r.speed == 10.0;
       rows.push_back(
@@ -216,17 +230,18 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
   out << fmt::format(
       "\nStatic strength (models/ucs_granite_undamped.toml, this build): {:.2f} MPa.\n\n"
       "| striker (m/s) | mean strain rate to peak (1/s) | dynamic strength (MPa) | DIF | "
-      "paper's DIF | eta at peak | max eta, half peak to peak | class | IG tensile | IG shear | "
-      "TG tensile | TG shear | exit | wall time |\n|---|---|---|---|---|---|---|---|---|---|---|"
-      "---|---|---|\n",
+      "paper's DIF | eta at peak | max eta, half peak to peak | ring-up (us) | max eta after "
+      "ring-up | class | IG tensile | IG shear | TG tensile | TG shear | exit | wall time |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       v.static_strength / 1e6);
   for (const ShpbRun& r : v.runs)
     out << fmt::format(
-        "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.3f} | {:.3f} | {} | {:.1f} % | {:.1f} % | "
-        "{:.1f} % | {:.1f} % | {} | {:.1f} s |\n",
+        "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.3f} | {:.3f} | {:.1f} | {:.3f} | {} | "
+        "{:.1f} % | {:.1f} % | {:.1f} % | {:.1f} % | {} | {:.1f} s |\n",
         r.speed, r.rate, r.strength / 1e6, r.strength / v.static_strength, dif(r.rate), r.eta_peak,
-        r.eta_loading, r.class_two ? "II" : "I", 100 * r.crack_share[0], 100 * r.crack_share[1],
-        100 * r.crack_share[2], 100 * r.crack_share[3], r.exit_code, r.seconds);
+        r.eta_loading, r.ring_up * 1e6, r.eta_ring_up, r.class_two ? "II" : "I",
+        100 * r.crack_share[0], 100 * r.crack_share[1], 100 * r.crack_share[2],
+        100 * r.crack_share[3], r.exit_code, r.seconds);
   out << "\nThe same impacts with bars built from blocks (5 mm blocks):\n\n| striker (m/s) | "
          "exact bars (MPa) | block bars, three-wave (MPa) | block bars, face forces (MPa) | "
          "block / exact | block bars' mean rate (1/s) | DIF (block bars) | wall time exact / "
@@ -245,15 +260,15 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
   }
   out << "\nThe pulse's rise time at 10 m/s (the model's 30 us is an assumption: [Li2018] gives "
          "no pulse shape):\n\n| rise time (us) | strength (MPa) | mean rate (1/s) | max eta, half "
-         "peak to peak | eta at peak | equilibrium from (us) | wall time |\n"
-         "|---|---|---|---|---|---|---|\n";
+         "peak to peak | max eta after the ring-up | eta at peak | equilibrium from (us) | wall "
+         "time |\n|---|---|---|---|---|---|---|---|\n";
   for (const ShpbRise& r : v.rises)
-    out << fmt::format("| {:.0f} | {:.1f} | {:.1f} | {:.3f} | {:.3f} | {} | {:.1f} s |\n",
-                       r.rise * 1e6, r.strength / 1e6, r.rate, r.eta_loading, r.eta_peak,
-                       std::isfinite(r.equilibrium_time)
-                           ? fmt::format("{:.1f}", r.equilibrium_time * 1e6)
-                           : std::string("never within 5 %"),
-                       r.seconds);
+    out << fmt::format(
+        "| {:.0f} | {:.1f} | {:.1f} | {:.3f} | {:.3f} | {:.3f} | {} | {:.1f} s |\n", r.rise * 1e6,
+        r.strength / 1e6, r.rate, r.eta_loading, r.eta_ring_up, r.eta_peak,
+        std::isfinite(r.equilibrium_time) ? fmt::format("{:.1f}", r.equilibrium_time * 1e6)
+                                          : std::string("never within 5 %"),
+        r.seconds);
   for (const auto& [l, plot] :
        {std::pair{&v.ladder, "shpb_ladder"}, std::pair{&v.block_ladder, "shpb_block_ladder"}}) {
     out << fmt::format(

@@ -91,6 +91,16 @@ DynamicMeasures dynamic_measures(const BarPair& bars, std::span<const ThreeWaveP
       m.equilibrium_time = p->t;
     if (p->stress >= 0.5 * m.peak_stress) m.eta_loading = std::max(m.eta_loading, std::abs(p->eta));
   }
+  const auto arrival = std::find_if(
+      points.begin(), end, [&](const ThreeWavePoint& p) { return p.s2 > 0.01 * m.peak_stress; });
+  m.ring_up_time = arrival != end ? 3.0 * (arrival->t - points.front().t)
+                                  : std::numeric_limits<double>::quiet_NaN();
+  m.eta_after_ring_up = std::numeric_limits<double>::quiet_NaN();
+  for (auto p = points.begin(); p != end; ++p)
+    if (p->t - points.front().t >= m.ring_up_time)
+      m.eta_after_ring_up = std::isnan(m.eta_after_ring_up)
+                                ? std::abs(p->eta)
+                                : std::max(m.eta_after_ring_up, std::abs(p->eta));
   return m;
 }
 

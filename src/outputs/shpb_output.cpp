@@ -157,6 +157,8 @@ io::Json shpb_json(const BarsView& b, const solver::Solver& solver, const model:
       {"peak_face_force_stress_Pa", io::rounded(peak_direct, 8)},
       {"eta_at_peak", measured(m.eta_at_peak)},
       {"eta_loading_max", io::rounded(m.eta_loading, 8)},
+      {"ring_up_time_s", io::rounded(m.ring_up_time, 8)},
+      {"eta_after_ring_up_max", io::rounded(m.eta_after_ring_up, 8)},
       {"equilibrium_tolerance", io::rounded(cfg.equilibrium_tolerance, 4)},
       {"equilibrium_time_s", io::rounded(m.equilibrium_time, 8)},
       {"energy_J_per_m",

@@ -254,13 +254,14 @@ struct ShpbRun {
   int exit_code = -1;
   std::string status;
   double strength = 0, rate = 0, eta_loading = 0, eta_peak = 0, strain_at_peak = 0;
+  double ring_up = 0, eta_ring_up = 0;  // s, -: the end of the ring-up, largest |eta| after it
   bool class_two = false;
   std::array<double, 4> crack_share{};  // of crack length, in measure::kCrackClassNames' order
   // The same impact with bars built from blocks: three-wave and face-force peaks, rate, time.
   double block_strength = 0, block_faces = 0, block_rate = 0, block_seconds = 0;
 };
 struct ShpbRise {
-  double rise, strength, rate, eta_loading, eta_peak, equilibrium_time, seconds;
+  double rise, strength, rate, eta_loading, eta_ring_up, eta_peak, equilibrium_time, seconds;
 };
 struct ShpbVerification {
   double static_strength = 0;  // Pa

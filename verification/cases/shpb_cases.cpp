@@ -170,6 +170,8 @@ ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::strin
     row.rate = json_number(r.summary, "mean_strain_rate_per_s");
     row.eta_loading = json_number(r.summary, "eta_loading_max");
     row.eta_peak = json_number(r.summary, "eta_at_peak");
+    row.ring_up = json_number(r.summary, "ring_up_time_s");
+    row.eta_ring_up = json_number(r.summary, "eta_after_ring_up_max");
     const Table bars = read_table(r.out / "bars.csv");
     double peak = -1, strain_max = 0, strain_end = 0;
     for (std::size_t k = 0; k < bars.rows.size(); ++k) {
@@ -206,12 +208,13 @@ ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::strin
     v.runs.push_back(row);
   }
   // The pulse's rise time at 10 m/s (models/shpb_granite.toml: 30 us): equilibrium and strength.
-  for (const double rise : {0.0, 15e-6, 30e-6, 45e-6}) {
+  for (const double rise : {0.0, 15e-6, 30e-6, 45e-6, 60e-6, 90e-6}) {
     const ModelRun r = run_model(binary, model, work / fmt::format("rise{}", rise * 1e6),
                                  fmt::format("--set shpb.rise_time={}", rise));
     v.rises.push_back({rise, json_number(r.summary, "dynamic_strength_Pa"),
                        json_number(r.summary, "mean_strain_rate_per_s"),
                        json_number(r.summary, "eta_loading_max"),
+                       json_number(r.summary, "eta_after_ring_up_max"),
                        json_number(r.summary, "eta_at_peak"),
                        json_number(r.summary, "equilibrium_time_s"), r.seconds});
   }

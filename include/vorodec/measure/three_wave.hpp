@@ -47,6 +47,13 @@ struct DynamicMeasures {
   double equilibrium_tolerance = 0.05;
   // -, the largest |eta| while the stress rises from half the peak to the peak.
   double eta_loading = 0;
+  // s, the end of the ring-up: three transit times of the specimen, each measured as the wave's
+  // first arrival at the transmitted face (its stress past 1 % of the peak). [Li2018]'s 36 us
+  // ring-up is three transit times of its 50 mm granite.
+  double ring_up_time = 0;
+  // -, the largest |eta| from the end of the ring-up to the peak ([Li2018]'s "oscillation error"
+  // after its 36 us ring-up); NaN when the peak comes first.
+  double eta_after_ring_up = 0;
   double incident_energy = 0, reflected_energy = 0, transmitted_energy = 0;  // J per m
 };
 
