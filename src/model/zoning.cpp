@@ -1,5 +1,7 @@
 #include "vorodec/model/zoning.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -115,7 +117,6 @@ void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double densit
     z.prescribed.push_back(0);
   }
   const double lambda = material.lambda(), shear = material.shear_modulus();
-  const auto zone0 = static_cast<std::uint32_t>(z.zones.size());
   for (const auto& t : mesh.zones) {
     Zone zone{};
     const Point p[3] = {mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]};
@@ -148,20 +149,6 @@ void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double densit
     for (auto* v : {&z.sxx, &z.syy, &z.sxy, &z.szz, &z.exx, &z.eyy, &z.gxy}) v->push_back(0.0);
     z.zone_block.push_back(b);
   }
-  // Gridpoint -> zone corners of the new gridpoints (they only belong to the new zones).
-  if (z.gp_zone_begin.empty()) z.gp_zone_begin.push_back(0);
-  std::vector<std::uint32_t> count(mesh.points.size(), 0);
-  for (std::uint32_t i = zone0; i < z.zones.size(); ++i)
-    for (std::uint32_t g : z.zones[i].gp) ++count[g - base];
-  std::vector<std::uint32_t> fill;
-  for (std::uint32_t c : count) {
-    fill.push_back(z.gp_zone_begin.back());
-    z.gp_zone_begin.push_back(z.gp_zone_begin.back() + c);
-  }
-  z.gp_zone.resize(z.gp_zone_begin.back());
-  for (std::uint32_t i = zone0; i < z.zones.size(); ++i)
-    for (std::uint32_t k = 0; k < 3; ++k) z.gp_zone[fill[z.zones[i].gp[k] - base]++] = i << 2 | k;
-
   z.corner_gp.resize(bl.corner.size(), -1);
   CornerArrays& ca = z.corners;
   const auto first = static_cast<std::uint32_t>(ca.corner.size());
@@ -292,19 +279,33 @@ void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& ou
     stress_zones<false>(z);
   else
     stress_zones<true>(z);
-  out_fx.resize(z.gridpoints());
-  out_fy.resize(z.gridpoints());
-#pragma omp parallel for schedule(static) if (ng >= 2048)
-  for (std::int64_t gi = 0; gi < ng; ++gi) {
-    const auto g = static_cast<std::size_t>(gi);
-    double fx = 0, fy = 0;
-    for (std::uint32_t j = z.gp_zone_begin[g]; j < z.gp_zone_begin[g + 1]; ++j) {
-      const std::uint32_t e = z.gp_zone[j];
-      fx += q.fx[e & 3u][e >> 2];
-      fy += q.fy[e & 3u][e >> 2];
+  out_fx.assign(z.gridpoints(), 0.0);
+  out_fy.assign(z.gridpoints(), 0.0);
+  // Added zone after zone: every gridpoint sums its zones in zone order. A block's zones touch only
+  // its own gridpoints, so the threads take whole blocks and the sums do not depend on their count.
+  const auto nz = static_cast<std::int64_t>(z.zones.size());
+  const std::uint32_t* owner = z.zone_block.data();
+  const std::uint32_t *g0 = q.gp[0].data(), *g1 = q.gp[1].data(), *g2 = q.gp[2].data();
+  const double *fx0 = q.fx[0].data(), *fx1 = q.fx[1].data(), *fx2 = q.fx[2].data();
+  const double *fy0 = q.fy[0].data(), *fy1 = q.fy[1].data(), *fy2 = q.fy[2].data();
+  double *ox = out_fx.data(), *oy = out_fy.data();
+#pragma omp parallel if (nz >= 2048)
+  {
+    const std::int64_t parts = omp_get_num_threads(), t = omp_get_thread_num();
+    const auto block_start = [&](std::int64_t k) {
+      std::int64_t i = nz * k / parts;
+      while (i > 0 && i < nz && owner[i] == owner[i - 1]) ++i;
+      return i;
+    };
+    const std::int64_t end = block_start(t + 1);
+    for (std::int64_t i = block_start(t); i < end; ++i) {
+      ox[g0[i]] += fx0[i];
+      oy[g0[i]] += fy0[i];
+      ox[g1[i]] += fx1[i];
+      oy[g1[i]] += fy1[i];
+      ox[g2[i]] += fx2[i];
+      oy[g2[i]] += fy2[i];
     }
-    out_fx[g] = fx;
-    out_fy[g] = fy;
   }
 }
 

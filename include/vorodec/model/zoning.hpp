@@ -81,9 +81,7 @@ struct Zoning {
   std::vector<Zone> zones;
   ZoneArrays arrays;
   std::vector<double> sxx, syy, sxy, szz, exx, eyy, gxy;
-  std::vector<std::uint32_t> zone_block;
-  // Gridpoint -> (zone << 2 | corner) in zone order, for a deterministic gather of zone forces.
-  std::vector<std::uint32_t> gp_zone_begin, gp_zone;
+  std::vector<std::uint32_t> zone_block;  // owning block; a block's zones are consecutive
   // Per block corner (Blocks::corner index): its gridpoint, or -1 on a rigid block.
   std::vector<std::int32_t> corner_gp;
   CornerArrays corners;
