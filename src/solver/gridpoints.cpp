@@ -20,6 +20,7 @@ double Solver::gridpoint_time_step() {
   auto& z = model_.zoning;
   const auto& bl = model_.blocks;
   std::vector<double> k = model::zone_stiffness_bound(z);
+  const model::BodyView view = model::body_view(bl, z);
   // A contact's 2x2 spring matrix and its coupling to the other side: row sums <= 3 max(Kn, Ks).
   for (std::size_t l = 0; l < laws_.size(); ++l) {
     for (std::size_t i = deformable_begin_[l]; i < law_begin_[l + 1]; ++i) {
@@ -27,8 +28,8 @@ double Solver::gridpoint_time_step() {
       const double kc = 3.0 * laws_[l]->max_stiffness(i - law_begin_[l]);
       const model::ContactFrame f = model::contact_frame(bl, c);
       const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-      for (const model::BodyPoint& p : {model::corner_point(bl, z, a, c.corner),
-                                        model::edge_point(bl, z, b, c.edge, f.point)}) {
+      for (const model::BodyPoint& p :
+           {model::corner_point(view, a, c.corner), model::edge_point(view, b, c.edge, f.point)}) {
         if (p.g0 >= 0) k[static_cast<std::size_t>(p.g0)] += kc;
         if (p.g1 >= 0) k[static_cast<std::size_t>(p.g1)] += kc;
       }

@@ -129,26 +129,36 @@ class LawGroupOf final : public LawGroup {
     outcomes_.resize(end - begin);
 #pragma omp parallel num_threads(chunks) if (end - begin >= deformable_parallel_from)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
-      model::Blocks& bl = *ctx.blocks;
-      const model::Zoning& z = *ctx.zoning;
+      const model::BodyView v = model::body_view(*ctx.blocks, *ctx.zoning);
+      model::Contact* contacts = ctx.contacts;
+      DeformableOutcome* outcomes = outcomes_.data();
       const Loop loop = loop_constants(ctx);
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
-      for (std::size_t i = lo; i < hi; ++i) {
-        model::Contact& c = ctx.contacts[i];
-        const model::ContactFrame f = model::contact_frame(bl, c);
-        const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-        DeformableOutcome& o = outcomes_[i - begin];
-        o.pa = model::corner_point(bl, z, a, c.corner);
-        o.pb = model::edge_point(bl, z, b, c.edge, f.point);
-        o.point = f.point;
-        const model::Point va = model::velocity_at(bl, z, a, o.pa, f.point);
-        const model::Point vb = model::velocity_at(bl, z, b, o.pb, f.point);
-        // Gridpoint corners: the increment from the gridpoints' velocities, force at the point.
-        const double du_s = ((va.x - vb.x) * -f.n.y + (va.y - vb.y) * f.n.x) * loop.dt;
-        o.slip = o.breakage = o.dashpots = 0.0;
-        o.force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f, du_s, 1.0,
-                         cracks, o.slip, o.breakage, o.dashpots);
+      // The frames of a batch first, as in step_range: independent of one another, so the core
+      // overlaps their square roots and divisions.
+      model::ContactFrame frames[batch];
+      for (std::size_t first = lo; first < hi;) {
+        const std::size_t stop = std::min(hi, first + static_cast<std::size_t>(batch));
+        for (std::size_t i = first; i < stop; ++i)
+          frames[i - first] = model::contact_frame(v.corners, contacts[i]);
+        for (std::size_t i = first; i < stop; ++i) {
+          model::Contact& c = contacts[i];
+          const model::ContactFrame& f = frames[i - first];
+          const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+          DeformableOutcome& o = outcomes[i - begin];
+          o.pa = model::corner_point(v, a, c.corner);
+          o.pb = model::edge_point(v, b, c.edge, f.point);
+          o.point = f.point;
+          const model::Point va = model::velocity_at(v, a, o.pa, f.point);
+          const model::Point vb = model::velocity_at(v, b, o.pb, f.point);
+          // Gridpoint corners: the increment from the gridpoints' velocities, force at the point.
+          const double du_s = ((va.x - vb.x) * -f.n.y + (va.y - vb.y) * f.n.x) * loop.dt;
+          o.slip = o.breakage = o.dashpots = 0.0;
+          o.force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f, du_s, 1.0,
+                           cracks, o.slip, o.breakage, o.dashpots);
+        }
+        first = stop;
       }
     }
     model::Blocks& bl = *ctx.blocks;
