@@ -22,25 +22,32 @@ void refresh_corners(Model& model) {
   CornerArrays& ca = z.corners;
   const double d = model.rounding_length;
   const auto n = static_cast<std::int64_t>(ca.corner.size());
-  const std::uint32_t *corner = ca.corner.data(), *next = ca.next.data(), *prev = ca.prev.data();
-  const std::int32_t* gp = z.corner_gp.data();
+  const auto nb = static_cast<std::int64_t>(ca.block_begin.size()) - 1;
+  const std::uint32_t *corner = ca.corner.data(), *gp = ca.gp.data(), *next = ca.next.data();
+  const std::uint32_t* begin = ca.block_begin.data();
   const double *x = z.x.data(), *y = z.y.data();
   double *px = ca.px.data(), *py = ca.py.data(), *tx = ca.tx.data(), *ty = ca.ty.data();
   double *inv = ca.inv.data(), *cx = ca.cx.data(), *cy = ca.cy.data(), *rad = ca.radius.data();
 #pragma omp parallel if (n >= 4096)
   {
-#pragma omp for simd schedule(simd : static)
-    for (std::int64_t j = 0; j < n; ++j) {
-      px[j] = x[gp[corner[j]]];
-      py[j] = y[gp[corner[j]]];
-    }
-#pragma omp for simd schedule(simd : static)
-    for (std::int64_t j = 0; j < n; ++j) {
-      const double ex = px[next[j]] - px[j], ey = py[next[j]] - py[j];
+    // The edge from corner j to corner k (its next).
+    const auto edge = [=](std::int64_t j, std::int64_t k) __attribute__((always_inline)) {
+      const double ex = px[k] - px[j], ey = py[k] - py[j];
       inv[j] = 1.0 / std::sqrt(ex * ex + ey * ey);
       tx[j] = inv[j] * ex;
       ty[j] = inv[j] * ey;
+    };
+#pragma omp for simd schedule(simd : static)
+    for (std::int64_t j = 0; j < n; ++j) {
+      px[j] = x[gp[j]];
+      py[j] = y[gp[j]];
     }
+    // The next corner is the next in the list (read without a gather) but at a block's last
+    // corner, which is then done again with its block's first.
+#pragma omp for simd schedule(simd : static)
+    for (std::int64_t j = 0; j < n - 1; ++j) edge(j, j + 1);
+#pragma omp for schedule(static)
+    for (std::int64_t k = 0; k < nb; ++k) edge(begin[k + 1] - 1, begin[k]);
     // Each corner's rounded arc (docs/theory.md §5.2: tangent to both edges, radius d tan(beta/2)
     // capped at 4d as in model/build.cpp) from the unit directions u (to the previous corner) and w
     // (to the next), without trigonometry (this runs for every boundary gridpoint every step):
@@ -50,9 +57,8 @@ void refresh_corners(Model& model) {
     // takes the cap, where |u x w| / (1 + u.w) (both round-off) gave any radius down to 0 and put
     // the arc's centre on the edge, and detection then chose a neighbour edge by chance (issue 26:
     // a false gap, a crack at 0.2 % of the peak).
-#pragma omp for simd schedule(simd : static)
-    for (std::int64_t j = 0; j < n; ++j) {
-      const double ux = -1.0 * tx[prev[j]], uy = -1.0 * ty[prev[j]];
+    const auto arc = [=](std::int64_t j, std::int64_t i) __attribute__((always_inline)) {
+      const double ux = -1.0 * tx[i], uy = -1.0 * ty[i];  // i: the previous corner
       const double fx = tx[j] - ux, fy = ty[j] - uy, sx = ux + tx[j], sy = uy + ty[j];
       const double a = std::sqrt(fx * fx + fy * fy), b = std::sqrt(sx * sx + sy * sy);
       const double r = a >= 4.0 * b ? 4.0 * d : d * a / b;
@@ -60,7 +66,12 @@ void refresh_corners(Model& model) {
       rad[j] = r;
       cx[j] = px[j] + k * -fy;
       cy[j] = py[j] + k * fx;
-    }
+    };
+      // The previous corner is the previous in the list but at a block's first corner, as above.
+#pragma omp for simd schedule(simd : static)
+    for (std::int64_t j = 1; j < n; ++j) arc(j, j - 1);
+#pragma omp for schedule(static)
+    for (std::int64_t k = 0; k < nb; ++k) arc(begin[k], begin[k + 1] - 1);
 #pragma omp for schedule(static)
     for (std::int64_t j = 0; j < n; ++j) {
       const std::uint32_t c = corner[j];
@@ -153,12 +164,14 @@ void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double densit
   CornerArrays& ca = z.corners;
   const auto first = static_cast<std::uint32_t>(ca.corner.size());
   const std::uint32_t c0 = bl.corner_begin[b], n = bl.corner_begin[b + 1] - c0;
+  if (ca.block_begin.empty()) ca.block_begin.push_back(0);
   for (std::uint32_t c = c0; c < c0 + n; ++c) {
     z.corner_gp[c] = static_cast<std::int32_t>(base + mesh.boundary[c - c0]);
     ca.corner.push_back(c);
+    ca.gp.push_back(base + mesh.boundary[c - c0]);
     ca.next.push_back(first + (bl.shape[c].next - c0));
-    ca.prev.push_back(first + (c == c0 ? n - 1 : c - 1 - c0));
   }
+  ca.block_begin.push_back(static_cast<std::uint32_t>(ca.corner.size()));
   for (auto* v : {&ca.px, &ca.py, &ca.tx, &ca.ty, &ca.inv, &ca.cx, &ca.cy, &ca.radius})
     v->resize(ca.corner.size(), 0.0);
   z.arrays.ux.resize(z.gridpoints(), 0.0);
