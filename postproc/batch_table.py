@@ -5,7 +5,8 @@ Mohr-Coulomb fit of the peak-strength envelope.
 Usage: postproc/batch_table.py results/batch_confinement/results.csv [-o out.png]
 
 Uses the columns `loading.confining_stress` (sigma3, Pa; a case without it has sigma3 = 0) and
-`peak_stress_Pa` (sigma1, Pa) of the cases with exit code 0. The fit is the least-squares line
+`peak_stress_Pa` (sigma1, Pa) of the cases with exit code 0 whose stress passed its peak
+(`peak_passed`; a case that stopped at its highest stress has no peak to fit). The fit is the least-squares line
 sigma1 = C0 + q sigma3, read as Mohr-Coulomb: friction angle phi = asin((q - 1) / (q + 1)),
 cohesion c = C0 (1 - sin phi) / (2 cos phi). With one confining stress only (a seed series) it
 draws each case's peak stress and their mean and standard deviation instead.
@@ -38,6 +39,9 @@ def read_cases(path):
     for r in rows:
         if r.get("exit_code") != "0" or not r.get("peak_stress_Pa"):
             print("skipped %s: exit code %s" % (r.get("case"), r.get("exit_code")), file=sys.stderr)
+            continue
+        if r.get("peak_passed") == "false":
+            print("skipped %s: no peak (stopped at its highest stress)" % r.get("case"), file=sys.stderr)
             continue
         names.append(r["case"])
         s3.append(float(r.get(SIGMA3) or 0.0))

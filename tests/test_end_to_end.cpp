@@ -59,6 +59,19 @@ TEST_F(EndToEnd, RunReachesPostPeakAndWritesEveryOutput) {
   EXPECT_GT(rows.back()[6] + rows.back()[7], 10);  // cracks formed
   const std::string summary = slurp(out / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"finished\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"peak_passed\": true"), std::string::npos) << summary;
+}
+
+TEST(PeakStress, OfARunStoppedWhileTheStressRisesIsReportedAsTheHighestStressNotAPeak) {
+  const fs::path out = out_dir("stopped_rising");
+  const Outcome o =
+      run_capture("run " + model.string() + " --threads 1 --no-vtk --max-steps 3000 --out " +
+                  out.string());
+  ASSERT_EQ(o.code, 0) << o.output;
+  EXPECT_NE(o.output.find("highest stress (no peak"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("peak stress"), std::string::npos) << o.output;
+  const std::string summary = slurp(out / "summary.json");
+  EXPECT_NE(summary.find("\"peak_passed\": false"), std::string::npos) << summary;
 }
 
 TEST_F(EndToEnd, VtkSeriesReadsBackThroughVtk) {

@@ -66,10 +66,12 @@ void print_outcome(const std::string& what, const run::RunSummary& s, const fs::
     return;
   }
   fmt::print(
-      "{}: {} after {} steps in {:.1f} s; peak stress {:.2f} MPa,{} E {:.2f} GPa, nu {:.3f}; "
+      "{}: {} after {} steps in {:.1f} s; {} {:.2f} MPa,{} E {:.2f} GPa, nu {:.3f}; "
       "cracks {} tensile, {} shear\nresults in {}/ (history.csv, summary.json, cracks.csv, "
       "vtk/*.pvd)\n",
-      what, s.status, s.steps, s.wall_seconds, s.peak_stress / 1e6,
+      what, s.status, s.steps, s.wall_seconds,
+      s.peak_passed ? "peak stress" : "highest stress (no peak: it never fell 1 % below)",
+      s.peak_stress / 1e6,
       s.tensile_strength > 0
           ? fmt::format(" tensile strength {:.2f} MPa,", s.tensile_strength / 1e6)
           : "",

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "shpb_output.hpp"
@@ -69,6 +70,7 @@ io::Json summary_json(const io::ModelConfig& cfg, const RunSummary& s) {
   j["title"] = cfg.title;
   j["status"] = s.status;
   j["peak_stress_Pa"] = io::rounded(s.peak_stress, 8);
+  j["peak_passed"] = s.peak_passed;
   j["tensile_strength_Pa"] = io::rounded(s.tensile_strength, 8);
   j["failure_stages"] = nullptr;
   if (f.valid)
@@ -128,6 +130,10 @@ RunSummary write_results(const io::ModelConfig& cfg, const Driver& driver, Curve
   const auto ec = brazilian ? measure::ElasticConstants{}
                             : measure::elastic_constants(curve.strain, curve.stress, curve.lateral);
   summary.peak_stress = peak;
+  const auto top = std::max_element(curve.stress.begin(), curve.stress.end());
+  summary.peak_passed =
+      top != curve.stress.end() &&
+      std::any_of(top, curve.stress.end(), [&](double s) { return s < 0.99 * *top; });
   // Brazilian test (disc between platens): sigma_t = 2 F / (pi D t), and the axial stress is
   // F / (D t); on flats subtending 2 alpha, times (sin 2 alpha - alpha) / alpha, the centre's
   // stress under a load spread over that arc (Hondros 1959). Direct tension: the largest pull.

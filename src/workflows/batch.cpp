@@ -32,8 +32,8 @@ std::string header(const BatchPlan& plan) {
   std::string h = "case,model";
   for (const std::string& key : plan.columns) h.append(",").append(csv_field(key));
   return h +
-         ",exit_code,status,peak_stress_Pa,youngs_modulus_Pa,poisson_ratio,steps,cracks_tensile,"
-         "cracks_shear,wall_time_s\n";
+         ",exit_code,status,peak_stress_Pa,peak_passed,youngs_modulus_Pa,poisson_ratio,steps,"
+         "cracks_tensile,cracks_shear,wall_time_s\n";
 }
 
 std::string row(const BatchPlan& plan, std::size_t i, const CaseOutcome& o, const fs::path& out) {
@@ -45,6 +45,7 @@ std::string row(const BatchPlan& plan, std::size_t i, const CaseOutcome& o, cons
   const auto number = [&](const char* name, int digits) {
     const io::Json v = summary_value(summary, name);
     if (summary.is_null()) return std::string();
+    if (v.is_boolean()) return std::string(v.get<bool>() ? "true" : "false");
     if (v.is_number_integer()) return fmt::format("{}", v.get<long>());
     return v.is_number() ? fmt::format("{:.{}g}", v.get<double>(), digits) : std::string("null");
   };
@@ -55,6 +56,7 @@ std::string row(const BatchPlan& plan, std::size_t i, const CaseOutcome& o, cons
     r.append(",").append(csv_field(override_value(c, key)));
   r += fmt::format(",{},{}", o.exit_code, csv_field(status));
   for (const auto& [key, digits] : {std::pair{"peak_stress_Pa", 8},
+                                    {"peak_passed", 0},
                                     {"youngs_modulus_Pa", 8},
                                     {"poisson_ratio", 6},
                                     {"steps", 0},

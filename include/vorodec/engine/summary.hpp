@@ -17,7 +17,9 @@ struct RunSummary {
   // 0 finished, 3 stopped unstable, 4 step limit of the model file reached, kStoppedForResume
   int exit_code = 0;
   std::string status;
-  double peak_stress = 0;       // Pa
+  double peak_stress = 0;  // Pa, the highest axial stress of the loading sense
+  // The stress fell at least 1 % below peak_stress after it: a peak, not where the run stopped.
+  bool peak_passed = false;
   double tensile_strength = 0;  // Pa: Brazilian (disc specimens) or direct tension (largest pull)
   double youngs_modulus = 0, poisson_ratio = 0;
   double initial_poisson_ratio = 0;  // fit over 10-30 % of peak (the linear range)
