@@ -23,7 +23,7 @@ void refresh_corners(Model& model) {
   const double d = model.rounding_length;
   const auto n = static_cast<std::int64_t>(ca.corner.size());
   const auto nb = static_cast<std::int64_t>(ca.block_begin.size()) - 1;
-  const std::uint32_t *corner = ca.corner.data(), *gp = ca.gp.data(), *next = ca.next.data();
+  const std::uint32_t *corner = ca.corner.data(), *gp = ca.gp.data();
   const std::uint32_t* begin = ca.block_begin.data();
   const double *x = z.x.data(), *y = z.y.data();
   double *px = ca.px.data(), *py = ca.py.data(), *tx = ca.tx.data(), *ty = ca.ty.data();
@@ -73,16 +73,19 @@ void refresh_corners(Model& model) {
 #pragma omp for schedule(static)
     for (std::int64_t k = 0; k < nb; ++k) arc(begin[k], begin[k + 1] - 1);
 #pragma omp for schedule(static)
-    for (std::int64_t j = 0; j < n; ++j) {
-      const std::uint32_t c = corner[j];
-      const Point t{tx[j], ty[j]}, p{px[j], py[j]};
-      const Point centre{cx[j], cy[j]}, centre_next{cx[next[j]], cy[next[j]]};
-      bl.world[c] = {p, centre};
-      CornerShape& s = bl.shape[c];
-      s.inv_length = inv[j];
-      s.radius = rad[j];
-      s.s0 = dot(centre - p, t);
-      s.s1 = dot(centre_next - p, t);
+    for (std::int64_t k = 0; k < nb; ++k) {
+      for (std::uint32_t j = begin[k]; j < begin[k + 1]; ++j) {
+        const std::uint32_t after = j + 1 < begin[k + 1] ? j + 1 : begin[k];  // the next corner
+        const std::uint32_t c = corner[j];
+        const Point t{tx[j], ty[j]}, p{px[j], py[j]};
+        const Point centre{cx[j], cy[j]}, centre_next{cx[after], cy[after]};
+        bl.world[c] = {p, centre};
+        CornerShape& s = bl.shape[c];
+        s.inv_length = inv[j];
+        s.radius = rad[j];
+        s.s0 = dot(centre - p, t);
+        s.s1 = dot(centre_next - p, t);
+      }
     }
   }
 }
@@ -162,14 +165,12 @@ void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double densit
   }
   z.corner_gp.resize(bl.corner.size(), -1);
   CornerArrays& ca = z.corners;
-  const auto first = static_cast<std::uint32_t>(ca.corner.size());
   const std::uint32_t c0 = bl.corner_begin[b], n = bl.corner_begin[b + 1] - c0;
   if (ca.block_begin.empty()) ca.block_begin.push_back(0);
   for (std::uint32_t c = c0; c < c0 + n; ++c) {
     z.corner_gp[c] = static_cast<std::int32_t>(base + mesh.boundary[c - c0]);
     ca.corner.push_back(c);
     ca.gp.push_back(base + mesh.boundary[c - c0]);
-    ca.next.push_back(first + (bl.shape[c].next - c0));
   }
   ca.block_begin.push_back(static_cast<std::uint32_t>(ca.corner.size()));
   for (auto* v : {&ca.px, &ca.py, &ca.tx, &ca.ty, &ca.inv, &ca.cx, &ca.cy, &ca.radius})

@@ -56,12 +56,11 @@ struct ZoneArrays {
 
 // The boundary gridpoints of the deformable blocks as corners, all blocks in one list (block
 // order), so that their world corners, edges and rounded arcs are refreshed several per
-// instruction: the corner index, its gridpoint, the list position of its block's next corner,
-// where each block's corners begin in the list (and the list's end; a corner's neighbours in the
-// list are its block's previous and next corners but at the block's ends), and the refresh's
-// scratch.
+// instruction: the corner index and its gridpoint, where each block's corners begin in the list
+// (and the list's end; a block's corners are in its order, so a corner's neighbours in the list
+// are its block's previous and next corners but at the block's ends), and the refresh's scratch.
 struct CornerArrays {
-  std::vector<std::uint32_t> corner, gp, next;
+  std::vector<std::uint32_t> corner, gp;
   std::vector<std::uint32_t> block_begin;
   std::vector<double> px, py;  // m, corner
   std::vector<double> tx, ty;  // -, unit direction of the edge from the corner
