@@ -13,8 +13,12 @@ case that matches it, error = |log10 t - log10 t_paper| (orders of magnitude), t
 Reads every case folder's summary.json (corrosion_stages) and history.csv (rows labelled
 `<stage>:equilibrium`). A case's series is its folder name up to `_rs`: the name says which
 layers and confinement it runs (e.g. gsc_s3=0_rs0.8). Prints one row per case: series, rs,
-failure time (s, and log10), corrosion steps, mechanical steps per corrosion step. Needs Debian's
-/usr/bin/python3 with numpy and matplotlib.
+failure time (s, and log10), corrosion steps, mechanical steps per corrosion step, and how
+stepped its creep curve is before the tertiary stage: the share of the creep strain of the first
+half of its life (corrosion time up to t_f / 2; the whole run if it did not fail) that the largest
+5 % of those corrosion steps carry (strain from one equilibrium to the next; 0.05 for a curve of
+equal steps, near 1 when a few avalanches make the curve). Needs Debian's /usr/bin/python3 with
+numpy and matplotlib.
 """
 import argparse
 import json
@@ -125,6 +129,25 @@ def report(cases):
                                              outcome("gsc_s3=0_rs%g" % r)))
 
 
+def step_share(strain, fraction=0.05):
+    """Share of the creep strain (the positive increments from one equilibrium to the next) that
+    the largest `fraction` of the corrosion steps carry; nan without two equilibria."""
+    inc = np.diff(np.asarray(strain, dtype=float))
+    inc = np.sort(inc[inc > 0])[::-1]
+    if inc.size == 0:
+        return math.nan
+    top = max(1, int(math.ceil(fraction * (len(strain) - 1))))
+    return float(inc[:top].sum() / inc.sum())
+
+
+def first_half(case):
+    """The equilibrium strains of the first half of the case's life (all of them without a
+    failure): primary and secondary creep, before the collapse's acceleration."""
+    if not case["failure"] or case["failure"] <= 0:
+        return case["strain"]
+    return case["strain"][case["t"] <= 0.5 * case["failure"]]
+
+
 def series(name):
     return name.split("_rs")[0] if "_rs" in name else name
 
@@ -145,12 +168,13 @@ def main():
                 cases.append(c)
     if not cases:
         sys.exit("%s: no corrosion-stage cases" % a.folder)
-    print("series,rs,failure_time_s,log10_failure_time,corrosion_steps,mechanical_per_corrosion")
+    print("series,rs,failure_time_s,log10_failure_time,corrosion_steps,mechanical_per_corrosion,"
+          "top5_share")
     for c in cases:
         t = c["failure"]
-        print("%s,%.3g,%s,%s,%d,%.0f" % (series(c["name"]), c["rs"], t,
-                                         "%.3f" % math.log10(t) if t and t > 0 else "",
-                                         c["steps"], c["per_step"]))
+        print("%s,%.3g,%s,%s,%d,%.0f,%.3f" % (series(c["name"]), c["rs"], t,
+                                              "%.3f" % math.log10(t) if t and t > 0 else "",
+                                              c["steps"], c["per_step"], step_share(first_half(c))))
 
     if a.report:
         report(cases)
@@ -178,11 +202,11 @@ def main():
     print("wrote", out)
 
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
-    for c in cases:
+    for i, c in enumerate(cases):
         keep = c["t"] > 0
         if keep.any():
             ax.semilogx(c["t"][keep], 100 * (c["strain"][keep] - c["strain"][0]),
-                        label="%s rs %.2f" % (series(c["name"]), c["rs"]))
+                        color=plt.cm.tab20(i % 20), label="%s rs %.2f" % (series(c["name"]), c["rs"]))
     ax.set_xlabel("corrosion time (s)")
     ax.set_ylabel("creep strain: axial strain since the load was on (%)")
     ax.grid(True, which="both", alpha=0.3)
