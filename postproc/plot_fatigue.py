@@ -206,7 +206,8 @@ def main():
         keep = c["t"] > 0
         if keep.any():
             ax.semilogx(c["t"][keep], 100 * (c["strain"][keep] - c["strain"][0]),
-                        color=plt.cm.tab20(i % 20), label="%s rs %.2f" % (series(c["name"]), c["rs"]))
+                        color=plt.cm.tab20(i % 20),  # 16 cases: the default 10 colours repeat
+                        label="%s rs %.2f" % (series(c["name"]), c["rs"]))
     ax.set_xlabel("corrosion time (s)")
     ax.set_ylabel("creep strain: axial strain since the load was on (%)")
     ax.grid(True, which="both", alpha=0.3)
