@@ -192,6 +192,31 @@ TEST(Calibrate, OptimisersNewBestIsRescaledOntoItsProportionalTargets) {
   EXPECT_GT(rescaled, 0) << slurp(dir / "out" / "history.csv");
 }
 
+TEST(Calibrate, HistoryPointReachedBeforeARunStoppedUnstableCounts) {
+  // Stage "load" ends at 0.1 % strain; "crush" then overlaps its contacts beyond the limit (exit
+  // 3, the last good state written). The stress at load:end is still the run's: the target is met.
+  const fs::path dir = out_dir("calibrate_unstable_later");
+  write(dir, "m.toml",
+        fmt::format("base = \"{}\"\n[contact]\noverlap_limit = 0.2\n"
+                    "[[stage]]\nname = \"load\"\nplaten_velocity = 0.02\nramp_time = 2e-4\n"
+                    "end_axial_strain = 1e-3\n"
+                    "[[stage]]\nname = \"crush\"\nplaten_velocity = 20.0\nend_axial_strain = 0.2\n",
+                    kModel));
+  const fs::path file =
+      write(dir, "c.toml",
+            "title = \"unstable later\"\nseeds = [11]\n[budget]\nruns = 4\nwall_time = 600\n"
+            "[[test]]\nname = \"two\"\nmodel = \"m.toml\"\n"
+            "[[parameter]]\nkey = \"joints.jkn\"\nmin = 5e12\nmax = 1e14\nstart = 1.8e13\n"
+            "scale = \"log\"\n"
+            "[[target]]\nname = \"stress\"\ntest = \"two\"\nquantity = \"history.axial_stress\"\n"
+            "at = { stage = \"load:end\" }\nvalue = 32.76e6\ntolerance = 0.01\n");
+  const auto o =
+      run_capture(fmt::format("calibrate {} --out {}", file.string(), (dir / "out").string()));
+  EXPECT_EQ(o.code, 0) << o.output;
+  EXPECT_NE(slurp(dir / "out" / "runs" / "e0001" / "two_seed11" / "log.txt").find("unstable"),
+            std::string::npos);
+}
+
 TEST(Calibrate, TargetNoTestProducesExitsTwoNamingTheTarget) {
   const fs::path dir = out_dir("calibrate_no_tension");
   const std::string extra =
@@ -205,7 +230,7 @@ TEST(Calibrate, TargetNoTestProducesExitsTwoNamingTheTarget) {
   EXPECT_NE(o.output.find("tensile_strength_Pa"), std::string::npos) << o.output;
 }
 
-TEST(CalibrationTargets, ReadAHistoryColumnAtACrossingOrAStageAndASummaryNumberByItsPath) {
+TEST(CalibrationTargets, ReadAHistoryColumnAtACrossingOrAStageOrItsChangeAndASummaryNumber) {
   using vorodec::workflows::run_quantity;
   using vorodec::workflows::RunQuantity;
   const fs::path dir = out_dir("calibrate_quantities");
@@ -221,6 +246,14 @@ TEST(CalibrationTargets, ReadAHistoryColumnAtACrossingOrAStageAndASummaryNumberB
   EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_stress", true, "stage", 0, "load:end"}), 5e7);
   EXPECT_TRUE(std::isnan(run_quantity(dir, {"axial_stress", true, "time", 9.0})));  // never
   EXPECT_TRUE(std::isnan(run_quantity(dir, {"axial_stres", true, "time", 1.0})));
+  // The change from a `from` point: a stage's strain, a strain since a stress was reached.
+  EXPECT_DOUBLE_EQ(
+      run_quantity(dir, {"axial_strain", true, "stage", 0, "load:end", "stage", 0, "load:start"}),
+      0.004);
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_strain", true, "time", 2.0, "", "axial_stress", 2e7}),
+                   0.002);
+  EXPECT_TRUE(std::isnan(
+      run_quantity(dir, {"axial_strain", true, "time", 2.0, "", "stage", 0, "unload:end"})));
   EXPECT_DOUBLE_EQ(run_quantity(dir, {"acoustic_emission.b_value"}), 1.5);
   EXPECT_DOUBLE_EQ(run_quantity(dir, {"corrosion_stages.1.failure_time_s"}), 7.0);
   EXPECT_TRUE(std::isnan(run_quantity(dir, {"corrosion_stages.x.failure_time_s"})));
@@ -270,6 +303,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCalibration{"quantity = \"peak_stress_Pa\"",
                        "quantity = \"history.axial_stress\"\nat = { time = 1.0, stage = \"a\" }",
                        "key 'target[1].at': give one column"},
+        BadCalibration{"quantity = \"peak_stress_Pa\"",
+                       "quantity = \"peak_stress_Pa\"\nfrom = { time = 1.0 }",
+                       "key 'target[1].from': only a history.<column> quantity"},
+        BadCalibration{"quantity = \"peak_stress_Pa\"",
+                       "quantity = \"history.axial_strain\"\nat = { time = 1.0 }\nfrom = {}",
+                       "key 'target[1].from': give one column"},
         BadCalibration{"test = \"ucs\"\nquantity = \"youngs",
                        "test = \"ucss\"\nquantity = \"youngs",
                        "key 'target[0].test': no [[test]] is named 'ucss'"},

@@ -263,10 +263,13 @@ Evaluation Calibration::score(std::vector<double> values, const std::string& pha
   e.values = std::move(values);
   e.runs = runs_used_;
   const std::size_t seeds = plan_.seeds.size();
-  // A run that did not finish (unstable, step limit) gives no numbers.
+  // A run that did not finish (unstable, step limit) gives no summary numbers; one stopped as
+  // unstable wrote its history up to the last good state, so a history point it reached counts
+  // (the strain at the end of a creep stage before the next stage broke the specimen).
   auto quantity = [&](std::size_t test, std::size_t seed, const RunQuantity& q) {
     const std::vector<double>& c = per_case[test * seeds + seed];
-    return c[0] != 0 ? NAN : c[3 + quantity_index(q.key())];
+    const bool reached = c[0] == 0 || (q.history && c[0] == run::kStoppedUnstable);
+    return reached ? c[3 + quantity_index(q.key())] : NAN;
   };
   for (const std::vector<double>& c : per_case) {
     e.wall_seconds = std::max(e.wall_seconds, c[1]);

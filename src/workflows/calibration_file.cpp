@@ -118,7 +118,21 @@ CalibrationParameter read_parameter(TomlSection& sec) {
   return p;
 }
 
-// quantity = "history.<column>" with at = { <column> = value } or at = { stage = "name:end" }.
+// A point of the run: { <column> = value } (its first crossing) or { stage = "name:end" }.
+void read_history_point(TomlSection& sec, const char* key, std::string& column, double& value,
+                        std::string& stage) {
+  TomlSection at = sec.sub(key);
+  if (at.table().size() != 1)
+    sec.fail(key, "give one column: { time = 3600.0 } or { stage = \"load:end\" }");
+  column = std::string(at.table().begin()->first.str());
+  if (column == "stage")
+    stage = at.string("stage", nullptr);
+  else
+    value = at.number(column, NAN);
+}
+
+// quantity = "history.<column>" with at = { <column> = value } or at = { stage = "name:end" },
+// and optionally from = { ... } (the change between the two points).
 void read_history_quantity(TomlSection& sec, CalibrationTarget& t) {
   t.kind = TargetKind::history;
   t.reads.history = true;
@@ -129,14 +143,9 @@ void read_history_quantity(TomlSection& sec, CalibrationTarget& t) {
              "a history quantity needs `at`: { time = 3600.0 }, { axial_strain = 0.002 }, "
              "{ axial_stress = 100e6 } (any column, its first crossing) or { stage = "
              "\"load:end\" }");
-  TomlSection at = sec.sub("at");
-  if (at.table().size() != 1)
-    sec.fail("at", "give one column: { time = 3600.0 } or { stage = \"load:end\" }");
-  t.reads.at_column = std::string(at.table().begin()->first.str());
-  if (t.reads.at_column == "stage")
-    t.reads.at_stage = at.string("stage", nullptr);
-  else
-    t.reads.at_value = at.number(t.reads.at_column, NAN);
+  read_history_point(sec, "at", t.reads.at_column, t.reads.at_value, t.reads.at_stage);
+  if (sec.has("from"))
+    read_history_point(sec, "from", t.reads.from_column, t.reads.from_value, t.reads.from_stage);
 }
 
 CalibrationTarget read_target(TomlSection& sec, const std::vector<CalibrationTest>& tests) {
@@ -160,8 +169,9 @@ CalibrationTarget read_target(TomlSection& sec, const std::vector<CalibrationTes
                          "by its dotted path: acoustic_emission.b_value), history.<column> with "
                          "`at`, or an envelope's cohesion_Pa or friction_angle_deg",
                          t.quantity, fmt::join(kSummaryQuantities, ", ")));
-  if (t.kind != TargetKind::history && sec.has("at"))
-    sec.fail("at", "only a history.<column> quantity is read `at` a point of the run");
+  for (const char* key : {"at", "from"})
+    if (t.kind != TargetKind::history && sec.has(key))
+      sec.fail(key, "only a history.<column> quantity is read `at` (or `from`) a point of the run");
   const auto find_test = [&](const std::string& name, std::string_view key) {
     const auto it = std::find_if(tests.begin(), tests.end(),
                                  [&](const CalibrationTest& c) { return c.name == name; });
@@ -363,8 +373,11 @@ std::vector<Override> run_overrides(const CalibrationPlan& plan, std::size_t tes
 
 std::string RunQuantity::key() const {
   if (!history) return name;
-  return at_column == "stage" ? fmt::format("history.{}@stage={}", name, at_stage)
-                              : fmt::format("history.{}@{}={:.17g}", name, at_column, at_value);
+  const auto point = [](const std::string& column, double value, const std::string& stage) {
+    return column == "stage" ? "stage=" + stage : fmt::format("{}={:.17g}", column, value);
+  };
+  const std::string at = fmt::format("history.{}@{}", name, point(at_column, at_value, at_stage));
+  return from_column.empty() ? at : at + " from " + point(from_column, from_value, from_stage);
 }
 
 CalibrationPlan read_calibration_file(const std::filesystem::path& file) {

@@ -164,29 +164,30 @@ std::vector<std::string> csv_fields(const std::string& line) {
 
 // A history.csv column where another first reaches a value (from below, interpolated between the
 // rows around it), or at the last row of a stage mark; NaN where the run never got there.
-double history_value(const fs::path& file, const RunQuantity& q) {
+double history_value(const fs::path& file, const std::string& name, const std::string& at_column,
+                     double at_value, const std::string& at_stage) {
   std::ifstream in(file);
   std::string line;
   if (!std::getline(in, line)) return NAN;
   const std::vector<std::string> header = csv_fields(line);
-  const auto column = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  const auto column = [&](const std::string& c) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), c) - header.begin());
   };
-  const std::size_t y = column(q.name), x = column(q.at_column);
+  const std::size_t y = column(name), x = column(at_column);
   if (y == header.size() || x == header.size()) return NAN;
   double found = NAN, x0 = NAN, y0 = NAN;
   while (std::getline(in, line)) {
     const std::vector<std::string> f = csv_fields(line);
     if (f.size() != header.size()) continue;
     const double yi = std::strtod(f[y].c_str(), nullptr);
-    if (!q.at_stage.empty()) {
-      if (f[x] == q.at_stage) found = yi;
+    if (!at_stage.empty()) {
+      if (f[x] == at_stage) found = yi;
       continue;
     }
     const double xi = std::strtod(f[x].c_str(), nullptr);
-    if (xi >= q.at_value) {
+    if (xi >= at_value) {
       if (std::isnan(x0) || xi == x0) return yi;
-      return y0 + (yi - y0) * (q.at_value - x0) / (xi - x0);
+      return y0 + (yi - y0) * (at_value - x0) / (xi - x0);
     }
     x0 = xi;
     y0 = yi;
@@ -197,7 +198,12 @@ double history_value(const fs::path& file, const RunQuantity& q) {
 }  // namespace
 
 double run_quantity(const fs::path& run_dir, const RunQuantity& q) {
-  if (q.history) return history_value(run_dir / "history.csv", q);
+  if (q.history) {
+    const fs::path file = run_dir / "history.csv";
+    const double at = history_value(file, q.name, q.at_column, q.at_value, q.at_stage);
+    if (q.from_column.empty()) return at;
+    return at - history_value(file, q.name, q.from_column, q.from_value, q.from_stage);
+  }
   const io::Json v = summary_value(read_summary(run_dir / "summary.json"), q.name);
   return v.is_number() ? v.get<double>() : NAN;
 }

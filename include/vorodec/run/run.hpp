@@ -27,6 +27,8 @@ struct RunOptions {
 // Exit code of a run stopped with a checkpoint written (signal or --stop-at-step):
 // `vorodec resume DIR` continues it.
 inline constexpr int kStoppedForResume = 6;
+// Exit code of a run stopped as numerically unstable; the last good state is written.
+inline constexpr int kStoppedUnstable = 3;
 // The checkpoint file in a results folder.
 inline constexpr const char* kCheckpointFile = "checkpoint.vck";
 

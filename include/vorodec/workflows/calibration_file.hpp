@@ -41,13 +41,18 @@ enum class TargetKind { summary, history, envelope_cohesion, envelope_friction }
 
 // What a target reads from one run: a summary.json number (by name, or by its dotted path
 // "acoustic_emission.b_value"), or a history.csv column's value where another column first
-// reaches a value (interpolated between rows) or at the row a stage marks ("creep190:end").
+// reaches a value (interpolated between rows) or at the row a stage marks ("creep190:end"),
+// optionally as its change since a `from` point read the same way (a strain from the end of the
+// hydrostatic stage, a stage's creep strain).
 struct RunQuantity {
   std::string name;  // the summary name or path, or the history column
   bool history = false;
   std::string at_column{};  // history: "time", "axial_strain", "axial_stress", ... or "stage"
   double at_value = 0;
-  std::string at_stage{};   // when at_column is "stage"
+  std::string at_stage{};     // when at_column is "stage"
+  std::string from_column{};  // empty: the value itself; else the change since this point
+  double from_value = 0;
+  std::string from_stage{};
   std::string key() const;  // one text per distinct quantity
 };
 
