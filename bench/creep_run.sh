@@ -9,7 +9,7 @@ build=${1:-$here/../build}
 threads=${2:-2}
 out=$(mktemp -d)
 half=""
-for s in 1 3 5; do half="$half --set stage[$s].creep_step_factor=5e-4"; done
+for s in 2 4 6; do half="$half --set stage[$s].creep_step_factor=5e-4"; done
 for run in default half; do
   args=$([[ $run == half ]] && echo "$half" || true)
   # shellcheck disable=SC2086

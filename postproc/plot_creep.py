@@ -3,7 +3,8 @@
 the macro Burger's model fitted to each stage, the paper's fits overlaid, and crack counts.
 
 Usage: postproc/plot_creep.py results/creep/history.csv --confining 25e6
-           [--paper 160:27.9,9613,1220,119 ...] [-o out.png] [--csv fits.csv]
+           [--zero-stage hydrostatic] [--paper 160:27.9,9613,1220,119 ...] [-o out.png]
+           [--csv fits.csv]
 
 A creep stage is a run of history rows with one stage label that spans more than --min-span
 seconds of simulated time (default an hour; ramps last seconds). Each is fitted with the 1D Burger's model of [Guo2020],
@@ -13,6 +14,8 @@ by linear least squares in (1/E1, 1/eta1, 1/E2) for each retardation time eta2/E
 --paper S:E1,eta1,E2,eta2 (GPa and GPa d) draws the paper's fit at deviatoric stress S (MPa) over
 the stage whose stress is nearest. Prints one line per stage: S, E1, eta1, E2, eta2, the fit's
 RMS residual, and the strain at the stage's end (simulated and the paper's curve).
+--zero-stage NAME takes the axial strain from the end of that stage (a laboratory zeroes its gauges
+after the hydrostatic stage, before the deviatoric load).
 
 Needs Debian's /usr/bin/python3 with python3-numpy and python3-matplotlib.
 """
@@ -79,12 +82,18 @@ def main():
     p.add_argument("--confining", type=float, default=0.0, help="Pa, lateral stress")
     p.add_argument("--paper", action="append", help="S:E1,eta1,E2,eta2 (MPa; GPa, GPa d)")
     p.add_argument("--min-span", type=float, default=3600.0, help="s, shortest creep stage")
+    p.add_argument("--zero-stage", help="take the axial strain from this stage's end")
     p.add_argument("-o", "--output")
     p.add_argument("--csv", help="write the fits here")
     args = p.parse_args()
     data = read_columns(args.history)
     require(data, args.history, ("time", "axial_strain", "axial_stress", "cracks_tensile",
                                  "cracks_shear"))
+    if args.zero_stage:
+        ends = np.flatnonzero(np.asarray(data["stage"]) == args.zero_stage + ":end")
+        if ends.size == 0:
+            sys.exit("%s: no row marks the end of stage '%s'" % (args.history, args.zero_stage))
+        data["axial_strain"] = data["axial_strain"] - data["axial_strain"][ends[-1]]
     stages = creep_stages(data, args.min_span)
     if not stages:
         sys.exit("%s: no stage spans more than %g s of simulated time" % (args.history,
@@ -113,7 +122,8 @@ def main():
                     label="%s paper's fit at %.0f MPa (Table 3)" % (name, ps[0] / 1e6))
         lines.append("%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.6g" % (
             name, s / 1e6, e1 / 1e9, eta1 / 1e9, e2 / 1e9, eta2 / 1e9, rms, eps[-1], paper_end))
-    ax.set_ylabel("axial strain (1e-3)")
+    ax.set_ylabel("axial strain (1e-3)" + (", from the end of stage '%s'" % args.zero_stage
+                                            if args.zero_stage else ""))
     ax.legend(fontsize=6, loc="best")
     ax.set_title(os.path.basename(os.path.dirname(os.path.abspath(args.history))))
     days = data["time"] / DAY
