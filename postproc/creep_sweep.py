@@ -36,7 +36,10 @@ def case_fit(folder, confining):
     _, rows = stages[-1]
     t = (data["time"][rows] - data["time"][rows[0]]) / DAY
     s = float(np.mean(data["axial_stress"][rows])) - confining
-    e1, eta1, e2, eta2, _ = fit(s, t, data["axial_strain"][rows])
+    # Strains from the end of the hydrostatic stage, if the run has one (as the paper counts).
+    ends = np.flatnonzero(np.asarray(data["stage"]) == "hydrostatic:end")
+    zero = data["axial_strain"][ends[-1]] if ends.size else 0.0
+    e1, eta1, e2, eta2, _ = fit(s, t, data["axial_strain"][rows] - zero)
     return dict(zip(MACRO, (e1, eta1, e2, eta2)))
 
 
