@@ -10,6 +10,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FormatStrFormatter  # noqa: E402
 
 
 def main(src, dst, title):
@@ -24,6 +25,12 @@ def main(src, dst, title):
             ax.plot([s], [e], "o", ms=14, mfc="none", mec="C3", label="default")
         ax.annotate("%g" % par, (s, e), textcoords="offset points", xytext=(6, 4), fontsize=8)
     order = float(rows[0]["order"]) if rows else float("nan")
+    # Within a decade matplotlib labels the minor ticks in full scientific notation, which overlap.
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_formatter(FormatStrFormatter("%g"))
+        axis.set_minor_formatter(FormatStrFormatter("%g"))
+    ax.tick_params(axis="x", which="both", labelrotation=45, labelsize=7)
+    ax.tick_params(axis="y", which="both", labelsize=7)
     ax.set_xlabel("wall time (s)")
     ax.set_ylabel("error")
     order_text = ("%.2f" % order) if order == order else "no trend (errors not monotone)"
