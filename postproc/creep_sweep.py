@@ -22,7 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from csvdata import read_columns  # noqa: E402
-from plot_creep import DAY, creep_stages, fit  # noqa: E402
+from plot_creep import DAY, creep_stages, fit, strain_at_stage_end  # noqa: E402
 
 MACRO = ("E1", "eta1", "E2", "eta2")
 DRIVES = {"kmn": "E1", "cmn": "eta1", "kkn": "E2", "ckn": "eta2"}
@@ -37,8 +37,7 @@ def case_fit(folder, confining):
     t = (data["time"][rows] - data["time"][rows[0]]) / DAY
     s = float(np.mean(data["axial_stress"][rows])) - confining
     # Strains from the end of the hydrostatic stage, if the run has one (as the paper counts).
-    ends = np.flatnonzero(np.asarray(data["stage"]) == "hydrostatic:end")
-    zero = data["axial_strain"][ends[-1]] if ends.size else 0.0
+    zero = strain_at_stage_end(data, "hydrostatic") or 0.0
     e1, eta1, e2, eta2, _ = fit(s, t, data["axial_strain"][rows] - zero)
     return dict(zip(MACRO, (e1, eta1, e2, eta2)))
 

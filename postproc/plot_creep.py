@@ -47,6 +47,12 @@ def creep_stages(data, min_span):
     return stages
 
 
+def strain_at_stage_end(data, stage):
+    """Axial strain at the last row marking the end of `stage`, or None if no row does."""
+    ends = np.flatnonzero(np.asarray(data["stage"]) == stage + ":end")
+    return float(data["axial_strain"][ends[-1]]) if ends.size else None
+
+
 def burgers(s, t, e1, eta1, e2, eta2):
     """Strain of the macro Burger's model; s in Pa, t in days, moduli in Pa, viscosities Pa d."""
     return s / e1 + s * t / eta1 + s / e2 * (1.0 - np.exp(-e2 * t / eta2))
@@ -90,10 +96,10 @@ def main():
     require(data, args.history, ("time", "axial_strain", "axial_stress", "cracks_tensile",
                                  "cracks_shear"))
     if args.zero_stage:
-        ends = np.flatnonzero(np.asarray(data["stage"]) == args.zero_stage + ":end")
-        if ends.size == 0:
+        zero = strain_at_stage_end(data, args.zero_stage)
+        if zero is None:
             sys.exit("%s: no row marks the end of stage '%s'" % (args.history, args.zero_stage))
-        data["axial_strain"] = data["axial_strain"] - data["axial_strain"][ends[-1]]
+        data["axial_strain"] = data["axial_strain"] - zero
     stages = creep_stages(data, args.min_span)
     if not stages:
         sys.exit("%s: no stage spans more than %g s of simulated time" % (args.history,
