@@ -241,19 +241,20 @@ TEST(CalibrationTargets, ReadAHistoryColumnAtACrossingOrAStageOrItsChangeAndASum
         R"({"acoustic_emission": {"b_value": 1.5},)"
         R"( "corrosion_stages": [{"failure_time_s": 1}, {"failure_time_s": 7}]})");
   // Between the rows at strains 0.001 and 0.003: interpolated.
-  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_stress", true, "axial_strain", 0.002}), 4e7);
-  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_strain", true, "time", 0.0}), 0.0);
-  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_stress", true, "stage", 0, "load:end"}), 5e7);
-  EXPECT_TRUE(std::isnan(run_quantity(dir, {"axial_stress", true, "time", 9.0})));  // never
-  EXPECT_TRUE(std::isnan(run_quantity(dir, {"axial_stres", true, "time", 1.0})));
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_stress", true, {"axial_strain", 0.002}}), 4e7);
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_strain", true, {"time", 0.0}}), 0.0);
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_stress", true, {"stage", 0, "load:end"}}), 5e7);
+  EXPECT_TRUE(std::isnan(run_quantity(dir, {"axial_stress", true, {"time", 9.0}})));  // never
+  EXPECT_TRUE(std::isnan(run_quantity(dir, {"axial_stres", true, {"time", 1.0}})));
   // The change from a `from` point: a stage's strain, a strain since a stress was reached.
   EXPECT_DOUBLE_EQ(
-      run_quantity(dir, {"axial_strain", true, "stage", 0, "load:end", "stage", 0, "load:start"}),
+      run_quantity(dir,
+                   {"axial_strain", true, {"stage", 0, "load:end"}, {"stage", 0, "load:start"}}),
       0.004);
-  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_strain", true, "time", 2.0, "", "axial_stress", 2e7}),
+  EXPECT_DOUBLE_EQ(run_quantity(dir, {"axial_strain", true, {"time", 2.0}, {"axial_stress", 2e7}}),
                    0.002);
   EXPECT_TRUE(std::isnan(
-      run_quantity(dir, {"axial_strain", true, "time", 2.0, "", "stage", 0, "unload:end"})));
+      run_quantity(dir, {"axial_strain", true, {"time", 2.0}, {"stage", 0, "unload:end"}})));
   EXPECT_DOUBLE_EQ(run_quantity(dir, {"acoustic_emission.b_value"}), 1.5);
   EXPECT_DOUBLE_EQ(run_quantity(dir, {"corrosion_stages.1.failure_time_s"}), 7.0);
   EXPECT_TRUE(std::isnan(run_quantity(dir, {"corrosion_stages.x.failure_time_s"})));

@@ -119,16 +119,16 @@ CalibrationParameter read_parameter(TomlSection& sec) {
 }
 
 // A point of the run: { <column> = value } (its first crossing) or { stage = "name:end" }.
-void read_history_point(TomlSection& sec, const char* key, std::string& column, double& value,
-                        std::string& stage) {
+HistoryPoint read_history_point(TomlSection& sec, const char* key) {
   TomlSection at = sec.sub(key);
   if (at.table().size() != 1)
     sec.fail(key, "give one column: { time = 3600.0 } or { stage = \"load:end\" }");
-  column = std::string(at.table().begin()->first.str());
-  if (column == "stage")
-    stage = at.string("stage", nullptr);
+  HistoryPoint p{std::string(at.table().begin()->first.str())};
+  if (p.column == "stage")
+    p.stage = at.string("stage", nullptr);
   else
-    value = at.number(column, NAN);
+    p.value = at.number(p.column, NAN);
+  return p;
 }
 
 // quantity = "history.<column>" with at = { <column> = value } or at = { stage = "name:end" },
@@ -143,9 +143,8 @@ void read_history_quantity(TomlSection& sec, CalibrationTarget& t) {
              "a history quantity needs `at`: { time = 3600.0 }, { axial_strain = 0.002 }, "
              "{ axial_stress = 100e6 } (any column, its first crossing) or { stage = "
              "\"load:end\" }");
-  read_history_point(sec, "at", t.reads.at_column, t.reads.at_value, t.reads.at_stage);
-  if (sec.has("from"))
-    read_history_point(sec, "from", t.reads.from_column, t.reads.from_value, t.reads.from_stage);
+  t.reads.at = read_history_point(sec, "at");
+  if (sec.has("from")) t.reads.from = read_history_point(sec, "from");
 }
 
 CalibrationTarget read_target(TomlSection& sec, const std::vector<CalibrationTest>& tests) {
@@ -371,13 +370,14 @@ std::vector<Override> run_overrides(const CalibrationPlan& plan, std::size_t tes
   return out;
 }
 
+std::string HistoryPoint::key() const {
+  return column == "stage" ? "stage=" + stage : fmt::format("{}={:.17g}", column, value);
+}
+
 std::string RunQuantity::key() const {
   if (!history) return name;
-  const auto point = [](const std::string& column, double value, const std::string& stage) {
-    return column == "stage" ? "stage=" + stage : fmt::format("{}={:.17g}", column, value);
-  };
-  const std::string at = fmt::format("history.{}@{}", name, point(at_column, at_value, at_stage));
-  return from_column.empty() ? at : at + " from " + point(from_column, from_value, from_stage);
+  const std::string text = fmt::format("history.{}@{}", name, at.key());
+  return from.column.empty() ? text : text + " from " + from.key();
 }
 
 CalibrationPlan read_calibration_file(const std::filesystem::path& file) {

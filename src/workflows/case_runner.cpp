@@ -164,8 +164,7 @@ std::vector<std::string> csv_fields(const std::string& line) {
 
 // A history.csv column where another first reaches a value (from below, interpolated between the
 // rows around it), or at the last row of a stage mark; NaN where the run never got there.
-double history_value(const fs::path& file, const std::string& name, const std::string& at_column,
-                     double at_value, const std::string& at_stage) {
+double history_value(const fs::path& file, const std::string& name, const HistoryPoint& at) {
   std::ifstream in(file);
   std::string line;
   if (!std::getline(in, line)) return NAN;
@@ -173,21 +172,21 @@ double history_value(const fs::path& file, const std::string& name, const std::s
   const auto column = [&](const std::string& c) {
     return static_cast<std::size_t>(std::find(header.begin(), header.end(), c) - header.begin());
   };
-  const std::size_t y = column(name), x = column(at_column);
+  const std::size_t y = column(name), x = column(at.column);
   if (y == header.size() || x == header.size()) return NAN;
   double found = NAN, x0 = NAN, y0 = NAN;
   while (std::getline(in, line)) {
     const std::vector<std::string> f = csv_fields(line);
     if (f.size() != header.size()) continue;
     const double yi = std::strtod(f[y].c_str(), nullptr);
-    if (!at_stage.empty()) {
-      if (f[x] == at_stage) found = yi;
+    if (!at.stage.empty()) {
+      if (f[x] == at.stage) found = yi;
       continue;
     }
     const double xi = std::strtod(f[x].c_str(), nullptr);
-    if (xi >= at_value) {
+    if (xi >= at.value) {
       if (std::isnan(x0) || xi == x0) return yi;
-      return y0 + (yi - y0) * (at_value - x0) / (xi - x0);
+      return y0 + (yi - y0) * (at.value - x0) / (xi - x0);
     }
     x0 = xi;
     y0 = yi;
@@ -200,9 +199,9 @@ double history_value(const fs::path& file, const std::string& name, const std::s
 double run_quantity(const fs::path& run_dir, const RunQuantity& q) {
   if (q.history) {
     const fs::path file = run_dir / "history.csv";
-    const double at = history_value(file, q.name, q.at_column, q.at_value, q.at_stage);
-    if (q.from_column.empty()) return at;
-    return at - history_value(file, q.name, q.from_column, q.from_value, q.from_stage);
+    const double at = history_value(file, q.name, q.at);
+    if (q.from.column.empty()) return at;
+    return at - history_value(file, q.name, q.from);
   }
   const io::Json v = summary_value(read_summary(run_dir / "summary.json"), q.name);
   return v.is_number() ? v.get<double>() : NAN;

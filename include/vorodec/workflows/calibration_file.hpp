@@ -39,20 +39,23 @@ struct Tie {
 
 enum class TargetKind { summary, history, envelope_cohesion, envelope_friction };
 
+// A point of a run's history: where `column` first reaches `value` (interpolated between rows), or,
+// when column is "stage", the row that marks `stage` ("creep190:end").
+struct HistoryPoint {
+  std::string column{};  // "time", "axial_strain", "axial_stress", ... or "stage"
+  double value = 0;
+  std::string stage{};
+  std::string key() const;
+};
+
 // What a target reads from one run: a summary.json number (by name, or by its dotted path
-// "acoustic_emission.b_value"), or a history.csv column's value where another column first
-// reaches a value (interpolated between rows) or at the row a stage marks ("creep190:end"),
-// optionally as its change since a `from` point read the same way (a strain from the end of the
-// hydrostatic stage, a stage's creep strain).
+// "acoustic_emission.b_value"), or a history.csv column's value at a point, optionally as its
+// change since a `from` point (a strain from the end of the hydrostatic stage, a stage's creep).
 struct RunQuantity {
   std::string name;  // the summary name or path, or the history column
   bool history = false;
-  std::string at_column{};  // history: "time", "axial_strain", "axial_stress", ... or "stage"
-  double at_value = 0;
-  std::string at_stage{};     // when at_column is "stage"
-  std::string from_column{};  // empty: the value itself; else the change since this point
-  double from_value = 0;
-  std::string from_stage{};
+  HistoryPoint at{};
+  HistoryPoint from{};      // column empty: the value itself; else the change since this point
   std::string key() const;  // one text per distinct quantity
 };
 
