@@ -177,29 +177,41 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
                  r.seconds,
                  !judged};
     rows.push_back(c);
-    if (r.speed == 10.0) {
+    // The model reads [Li2018]'s impact velocities as the bar's particle velocity (striker 10
+    // m/s is its "5 m/s", 20 m/s its "10 m/s"; models/shpb_granite.toml), so its class-I test
+    // (163 MPa at 36.7 1/s) is the 10 m/s run and its class-II test, where it reports
+    // equilibrium within 8 %, the 20 m/s run.
+    if (r.speed == 20.0) {
       rows.push_back(
           {"B5",
-           fmt::format("equilibrium factor |eta| after the ring-up ({:.1f} us) to the peak, 10 m/s",
+           fmt::format("equilibrium factor |eta| after the ring-up ({:.1f} us) to the peak, 20 m/s",
                        r.ring_up * 1e6),
-           "[Li2018]: within 8 % after its 36 us ring-up, at 10 m/s", 0.0, r.eta_ring_up,
+           "[Li2018]: within 8 % after its 36 us ring-up, at its \"10 m/s\"", 0.0, r.eta_ring_up,
            r.eta_ring_up, 0.08,
            settings + "; ring-up: three transit times, each the first arrival at the "
                       "transmitted face",
            r.seconds});
-      rows.push_back({"B5", "equilibrium factor |eta| from half the peak to the peak, 10 m/s",
+      rows.push_back({"B5", "equilibrium factor |eta| from half the peak to the peak, 20 m/s",
                       "stricter than [Li2018]'s measure: half the peak comes before the ring-up "
                       "ends",
                       0.0, r.eta_loading, r.eta_loading, 0.08, settings, r.seconds, true});
     }
-    if (r.speed == 5.0 || r.speed == 10.0) {
-      const bool want_two = r.speed == 10.0;
+    if (r.speed == 10.0)
+      rows.push_back({"B5", "class-I peak stress at 10 m/s (Pa)",
+                      "[Li2018]: 163 MPa at 36.7 1/s, class I, its \"5 m/s\"", 163e6, r.strength,
+                      std::abs(r.strength - 163e6) / 163e6, 0.05,
+                      settings + fmt::format("; mean rate {:.1f} 1/s", r.rate), r.seconds});
+    if (r.speed == 10.0 || r.speed == 20.0) {
+      const bool want_two = r.speed == 20.0;
       rows.push_back(
           {"B5",
            fmt::format("class {} response at {} m/s (1: yes)", want_two ? "II" : "I", r.speed),
-           "[Li2018]: class I at 5 m/s, class II at 10 m/s", 1.0,
+           "[Li2018]: class I at its \"5 m/s\", class II at its \"10 m/s\"", 1.0,
            r.class_two == want_two ? 1.0 : 0.0, r.class_two == want_two ? 0.0 : 1.0, 0.0,
-           settings + "; class II: the strain still grows after the peak", r.seconds});
+           settings + fmt::format("; final strain {:.2f} x the strain at the peak (class II: "
+                                  "above 1.05)",
+                                  r.strain_end / r.strain_at_peak),
+           r.seconds});
     }
     const double ig_tensile = r.crack_share[0];
     if (r.rate <= 100)
@@ -221,7 +233,7 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
        fmt::format("intergranular tensile share at the highest rate ({:.0f} 1/s)", fastest.rate),
        "[Li2018]: falls to 29.2 % at 334 1/s", 0.292, fastest.crack_share[0],
        std::abs(fastest.crack_share[0] - 0.292) / 0.292, 0.34,
-       "models/shpb_granite.toml, striker 50 m/s", fastest.seconds});
+       fmt::format("models/shpb_granite.toml, striker {} m/s", fastest.speed), fastest.seconds});
   int failed = 0;
   for (const auto& r : rows) {
     failed += !r.pass();
@@ -231,15 +243,16 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
       "\nStatic strength (models/ucs_granite_undamped.toml, this build): {:.2f} MPa.\n\n"
       "| striker (m/s) | mean strain rate to peak (1/s) | dynamic strength (MPa) | DIF | "
       "paper's DIF | eta at peak | max eta, half peak to peak | ring-up (us) | max eta after "
-      "ring-up | class | IG tensile | IG shear | TG tensile | TG shear | exit | wall time |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "ring-up | final / peak strain | class | IG tensile | IG shear | TG tensile | TG shear | exit | wall time |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       v.static_strength / 1e6);
   for (const ShpbRun& r : v.runs)
     out << fmt::format(
-        "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.3f} | {:.3f} | {:.1f} | {:.3f} | {} | "
+        "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.3f} | {:.3f} | {:.1f} | {:.3f} | {:.2f} | {} | "
         "{:.1f} % | {:.1f} % | {:.1f} % | {:.1f} % | {} | {:.1f} s |\n",
         r.speed, r.rate, r.strength / 1e6, r.strength / v.static_strength, dif(r.rate), r.eta_peak,
-        r.eta_loading, r.ring_up * 1e6, r.eta_ring_up, r.class_two ? "II" : "I",
+        r.eta_loading, r.ring_up * 1e6, r.eta_ring_up, r.strain_end / r.strain_at_peak,
+        r.class_two ? "II" : "I",
         100 * r.crack_share[0], 100 * r.crack_share[1], 100 * r.crack_share[2],
         100 * r.crack_share[3], r.exit_code, r.seconds);
   out << "\nThe same impacts with bars built from blocks (5 mm blocks):\n\n| striker (m/s) | "

@@ -159,7 +159,9 @@ ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::strin
       run_model(binary, src / "models/ucs_granite_undamped.toml", work / "static");
   v.static_strength = json_number(stat.summary, "peak_stress_Pa");
   const std::filesystem::path model = src / "models/shpb_granite.toml";
-  for (const double speed : {5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 50.0}) {
+  // 35 m/s (about 310 1/s) is the last speed within [Li2018]'s 48-334 1/s; at 40 m/s and more a
+  // crushed corner overlaps past the limit after the peak (exit 3).
+  for (const double speed : {5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 35.0}) {
     const ModelRun r = run_model(binary, model, work / fmt::format("v{}", speed),
                                  fmt::format("--set shpb.striker_velocity={}", speed));
     ShpbRun row;
@@ -183,9 +185,13 @@ ShpbVerification b5_granite_shpb(const std::string& source_dir, const std::strin
       strain_max = std::max(strain_max, e);
       strain_end = e;
     }
-    // Class I: the strain recovers after the peak (the specimen unloads elastically); class
-    // II: it goes on growing past the peak.
-    row.class_two = strain_end > 1.05 * row.strain_at_peak && strain_end >= 0.95 * strain_max;
+    // [Li2018]: class I recovers its strain (elastic unloading, "not in a failure state"); class
+    // II keeps "a permanent deformation after its complete breakage". So class II when the
+    // final strain stays past the strain at the peak; the intact fragments of a broken specimen
+    // may still unload a little from the largest strain.
+    row.class_two = strain_end > 1.05 * row.strain_at_peak;
+    row.strain_max = strain_max;
+    row.strain_end = strain_end;
     const std::string classes[] = {"intergranular_tensile", "intergranular_shear",
                                    "transgranular_tensile", "transgranular_shear"};
     double total = 0;
