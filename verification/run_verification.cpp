@@ -243,18 +243,18 @@ int write_shpb(std::ostream& out, const std::string& source_dir, const std::stri
       "\nStatic strength (models/ucs_granite_undamped.toml, this build): {:.2f} MPa.\n\n"
       "| striker (m/s) | mean strain rate to peak (1/s) | dynamic strength (MPa) | DIF | "
       "paper's DIF | eta at peak | max eta, half peak to peak | ring-up (us) | max eta after "
-      "ring-up | final / peak strain | class | IG tensile | IG shear | TG tensile | TG shear | exit | wall time |\n"
+      "ring-up | final / peak strain | class | IG tensile | IG shear | TG tensile | TG shear | "
+      "exit | wall time |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       v.static_strength / 1e6);
   for (const ShpbRun& r : v.runs)
     out << fmt::format(
-        "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.3f} | {:.3f} | {:.1f} | {:.3f} | {:.2f} | {} | "
-        "{:.1f} % | {:.1f} % | {:.1f} % | {:.1f} % | {} | {:.1f} s |\n",
+        "| {} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.3f} | {:.3f} | {:.1f} | {:.3f} | {:.2f} | "
+        "{} | {:.1f} % | {:.1f} % | {:.1f} % | {:.1f} % | {} | {:.1f} s |\n",
         r.speed, r.rate, r.strength / 1e6, r.strength / v.static_strength, dif(r.rate), r.eta_peak,
         r.eta_loading, r.ring_up * 1e6, r.eta_ring_up, r.strain_end / r.strain_at_peak,
-        r.class_two ? "II" : "I",
-        100 * r.crack_share[0], 100 * r.crack_share[1], 100 * r.crack_share[2],
-        100 * r.crack_share[3], r.exit_code, r.seconds);
+        r.class_two ? "II" : "I", 100 * r.crack_share[0], 100 * r.crack_share[1],
+        100 * r.crack_share[2], 100 * r.crack_share[3], r.exit_code, r.seconds);
   out << "\nThe same impacts with bars built from blocks (5 mm blocks):\n\n| striker (m/s) | "
          "exact bars (MPa) | block bars, three-wave (MPa) | block bars, face forces (MPa) | "
          "block / exact | block bars' mean rate (1/s) | DIF (block bars) | wall time exact / "

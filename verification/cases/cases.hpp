@@ -255,7 +255,7 @@ struct ShpbRun {
   std::string status;
   double strength = 0, rate = 0, eta_loading = 0, eta_peak = 0, strain_at_peak = 0;
   double ring_up = 0, eta_ring_up = 0;  // s, -: the end of the ring-up, largest |eta| after it
-  double strain_max = 0, strain_end = 0;  // the largest and the last three-wave strain
+  double strain_end = 0;                // the last three-wave strain
   bool class_two = false;
   std::array<double, 4> crack_share{};  // of crack length, in measure::kCrackClassNames' order
   // The same impact with bars built from blocks: three-wave and face-force peaks, rate, time.
