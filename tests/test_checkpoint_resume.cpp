@@ -93,11 +93,11 @@ TEST(Resume, GrainBasedDeformableRunMatchesTheUninterruptedRun) {
 }
 
 TEST(Resume, CorrosionStageStoppedMidFatigueMatchesTheUninterruptedRun) {
-  // corrosion_small: corrosion steps from step ~2000 to 33700, then no equilibrium: the collapse
-  // ends the run at step 133700; the stops fall between corrosion steps, in equilibria, and in
-  // the collapse.
+  // corrosion_small: corrosion steps from step ~2000 to 23590, then no equilibrium: the collapse
+  // ends the run at step 43590; the stops fall between corrosion steps (9020), in an equilibrium
+  // (9030) and in the collapse.
   EXPECT_NO_FATAL_FAILURE(expect_resume_matches("corrosion", kModels + "corrosion_small.toml",
-                                                {9020, 20000, 60000, 130000}));
+                                                {9020, 9030, 30000, 43000}));
 }
 
 TEST(Resume, PressureBarTestStoppedMidImpactMatchesTheUninterruptedRun) {

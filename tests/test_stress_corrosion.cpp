@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include "run_support.hpp"
@@ -125,6 +126,35 @@ TEST(StressCorrosion, ShrinkingABentJointScalesItsForceByXiAndItsMomentByXiCubed
       laws::bond_tension(shrunk_section),
       -p.section.fn / length + xi * p.section.bending * std::abs(p.section.m) / (length * length),
       1e-6 * std::abs(p.section.fn / length));
+}
+
+// What assess_contacts skips a contact's integral by: exceeds(limit) holds exactly when the
+// integral passes the limit by more than rounding, over stresses from activation to the edge of
+// failure and factors from 1 down to near the floor.
+TEST(StressCorrosion, HeldTimeExceedsALimitExactlyWhenItsIntegralPassesIt) {
+  const laws::StrengthDegradation law{25.8, 0.4, 0.01};
+  const laws::InitialStrength p0{10e6, 40e6, std::tan(40.0 * M_PI / 180.0)};
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int compared = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const laws::ContactStress st{(unit(random) - 0.5) * 2.0 * p0.tension,
+                                 unit(random) * 1.5 * p0.cohesion};
+    const double lambda = 0.05 + 0.95 * unit(random);
+    const double m = laws::stress_level(st, p0, lambda);
+    if (m >= 1.0 || m < law.m_s) continue;
+    const double floor = laws::min_strength_factor(law, st, p0);
+    const auto rate = [&](double v) {
+      return laws::factor_rate(law, 1e-10, laws::stress_level(st, p0, v));
+    };
+    const double t = laws::held_time(rate, lambda, floor);
+    ASSERT_TRUE(std::isfinite(t) && t > 0) << "m " << m;
+    EXPECT_TRUE(laws::held_time_exceeds(rate, lambda, floor, t * (1 - 1e-6)));
+    EXPECT_FALSE(laws::held_time_exceeds(rate, lambda, floor, t));
+    EXPECT_FALSE(laws::held_time_exceeds(rate, lambda, floor, t * (1 + 1e-6)));
+    ++compared;
+  }
+  EXPECT_GT(compared, 200);
 }
 
 namespace {

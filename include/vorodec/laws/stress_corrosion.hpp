@@ -155,6 +155,22 @@ double held_time(const Rate& rate, double from, double to) {
     t += detail::gauss_panel(rate, to + p * h, to + (p + 1) * h);
   return t;
 }
+// Whether held_time(rate, from, to) exceeds `limit` (s), from as few panels as that takes: the
+// panels from the top down (the slowest rates, the largest part of the integral), until their
+// partial sum passes the limit by more than the rounding of held_time's own sum (a relative
+// 1e-9). False when the whole integral does not pass it that clearly. A corrosion step skips the
+// integral of every item this shows slower than the fastest so far (CorrosionControl).
+template <class Rate>
+bool held_time_exceeds(const Rate& rate, double from, double to, double limit) {
+  if (!(from > to)) return 0.0 > limit;
+  const double h = (from - to) / held_panels;
+  double t = 0.0;
+  for (int p = held_panels - 1; p >= 0; --p) {
+    t += detail::gauss_panel(rate, to + p * h, to + (p + 1) * h);
+    if (t * (1 - 1e-9) > limit) return true;
+  }
+  return false;
+}
 // Where the value is after dt (s) from `from` on the same panels (at least `floor`): the panel the
 // time runs out in, then bisection inside it to a 1e-12 part of the span (or
 // the last bit).
