@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """Error against run time of the static-fatigue stage: failure time at rs 0.7 and 0.8 against n_c
-(steps_per_failure) and against the equilibrium limit, from `vorodec batch
+(steps_per_failure), against the equilibrium limit and against the equilibrium check's interval
+(check_interval, steps), from `vorodec batch
 models/batch_ldb_fatigue_ladder.toml` plus the default cases (gsc_s3=0_rs0.7, gsc_s3=0_rs0.8) of
-`vorodec batch models/batch_ldb_fatigue.toml`.
+`vorodec batch models/batch_ldb_fatigue.toml` (the check interval's default rung; the n_c and
+limit ladders' default rungs, every 50 steps, are rs0.7_ci50 and rs0.8_ci50 of the ladder).
 
 Usage: postproc/fatigue_ladder.py LADDER_FOLDER FATIGUE_FOLDER [-o out_prefix]
 
-Each ladder's reference is its finest rung (n_c 16, equilibrium 2.5e-5); error = |t - t_ref| /
-t_ref; observed order = least-squares slope of log error against log parameter (1/n_c, or the
-limit). Writes <prefix>_<ladder>.csv (parameter,value,error,seconds,default,order: the input of
+Each ladder's reference is its finest rung (n_c 16, equilibrium 2.5e-5, a check every step);
+error = |t - t_ref| / t_ref; observed order = least-squares slope of log error against log
+parameter (1/n_c, the limit, or the interval). Writes <prefix>_<ladder>.csv (parameter,value,error,seconds,default,order: the input of
 verification/plot_cost_accuracy.py) and prints each ladder as a Markdown table. Needs Debian's
 /usr/bin/python3 with numpy.
 """
@@ -38,19 +40,24 @@ def main():
     ap.add_argument("-o", "--out", default="fatigue_ladder")
     a = ap.parse_args()
     for rs in ("0.7", "0.8"):
-        default = case(os.path.join(a.fatigue, "gsc_s3=0_rs" + rs))
+        # n_c and the limit were laddered with a check every 50 steps; the interval's ladder has
+        # the programme's own case (every 10) as its default.
+        defaults = {"nc": case(os.path.join(a.ladder, "rs%s_ci50" % rs)),
+                    "ci": case(os.path.join(a.fatigue, "gsc_s3=0_rs" + rs))}
+        defaults["eq"] = defaults["nc"]
         for kind, rungs, finest in (("nc", [(1, "nc1"), (4, None), (16, "nc16")], 16),
                                     ("eq", [(4e-4, "eq4e-4"), (1e-4, None), (2.5e-5, "eq2.5e-5")],
-                                     2.5e-5)):
+                                     2.5e-5),
+                                    ("ci", [(50, "ci50"), (10, None), (1, "ci1")], 1)):
             pts = []
             for value, name in rungs:
-                got = default if name is None else case(
+                got = defaults[kind] if name is None else case(
                     os.path.join(a.ladder, "rs%s_%s" % (rs, name)))
                 if got is None or got[0] is None:
                     continue
                 param = 1.0 / value if kind == "nc" else value
                 pts.append((param, got[0], got[1], name is None, value == finest))
-            label = "1 / n_c" if kind == "nc" else "equilibrium ratio"
+            label = {"nc": "1 / n_c", "eq": "equilibrium ratio", "ci": "check interval"}[kind]
             if not any(p[4] for p in pts):
                 print("\n### Static fatigue, rs %s: failure time against %s\n\nNot finished "
                       "(its finest rung has no failure time).\n" % (rs, label))
