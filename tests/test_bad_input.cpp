@@ -553,6 +553,14 @@ TEST(BadInput, PressureBarWithANonPositiveModulusIsRejected) {
                        "must be > 0"));
 }
 
+TEST(BadInput, PressureBarWithAnUnknownRiseShapeIsRejected) {
+  const std::string text =
+      replace(shpb_model(), "striker_velocity = 5\n",
+              "striker_velocity = 5\nrise_time = 1e-5\nrise_shape = \"sine\"\n");
+  EXPECT_TRUE(rejected("shpb_rise_shape", text, "shpb.rise_shape", line_of(text, "rise_shape"),
+                       "\"linear\" (a ramp) or \"cosine\""));
+}
+
 TEST(BadInput, PressureBarWithStagesIsRejected) {
   const std::string text = shpb_model() + "[[stage]]\nplaten_velocity = 0.05\n";
   EXPECT_TRUE(

@@ -25,6 +25,30 @@ TEST(PressureBar, BarAgainstBarTransmitsTheWholePulse) {
     EXPECT_TRUE(r.pass()) << r.name << ": " << r.error;
 }
 
+TEST(PressureBar, CosineRiseCarriesTheRampsImpulseWithoutItsCorners) {
+  const loading::BarProperties bar{1.0, 0.02, 2.0e11, 8000.0, true};
+  const double ls = 0.2, v = 5.0, rise = 2e-5;
+  const double sigma = 0.5 * bar.impedance() * v, duration = 2.0 * ls / bar.wave_speed();
+  const auto ramp = loading::striker_pulse(bar, ls, v, 0.0, rise);
+  const auto cosine = loading::striker_pulse(bar, ls, v, 0.0, rise, true);
+  double ramp_impulse = 0, cosine_impulse = 0;
+  const int n = 200000;
+  for (int k = 0; k < n; ++k) {  // midpoint rule over the pulse
+    const double t = (k + 0.5) * duration / n;
+    ramp_impulse += ramp(t) * duration / n;
+    cosine_impulse += cosine(t) * duration / n;
+  }
+  EXPECT_NEAR(cosine_impulse, ramp_impulse, 1e-6 * ramp_impulse);
+  EXPECT_NEAR(cosine_impulse, sigma * (duration - rise), 1e-6 * ramp_impulse);
+  EXPECT_NEAR(cosine(0.5 * rise), 0.5 * sigma, 1e-9 * sigma);
+  EXPECT_NEAR(cosine(rise), sigma, 1e-9 * sigma);
+  // No corner: the slope is zero where the rise starts and ends (the ramp's jumps by sigma / rise).
+  const double h = 1e-3 * rise;
+  EXPECT_LT(cosine(h) / h, 0.01 * sigma / rise);
+  EXPECT_LT((sigma - cosine(rise - h)) / h, 0.01 * sigma / rise);
+  EXPECT_NEAR(ramp(h) / h, sigma / rise, 1e-6 * sigma / rise);
+}
+
 TEST(PressureBar, FreeFarEndReflectsAndQuietFarEndAbsorbs) {
   loading::BarProperties p{1.0, 0.02, 2.0e11, 8000.0, false};
   const double c = p.wave_speed();

@@ -101,6 +101,13 @@ loading::ShpbConfig read_shpb(io::TomlSection& sec) {
     sec.fail("rise_time", fmt::format("the rise and the fall ({} s each) take longer than the "
                                       "pulse (2 x striker_length / c0 = {} s)",
                                       s.rise_time, pulse));
+  const std::string linear = "linear";
+  const std::string shape = sec.string("rise_shape", &linear);
+  if (shape != "linear" && shape != "cosine")
+    sec.fail(
+        "rise_shape",
+        fmt::format("\"linear\" (a ramp) or \"cosine\" (a raised cosine) (got \"{}\")", shape));
+  s.smooth_rise = shape == "cosine";
   const std::string exact = "exact";
   const std::string bars = sec.string("bars", &exact);
   if (bars != "exact" && bars != "blocks")
@@ -146,7 +153,7 @@ ShpbDriver::ShpbDriver(const DriverContext& c)
       incident_(cfg_.incident,
                 loading::striker_pulse(cfg_.incident, cfg_.striker_length, cfg_.striker_velocity,
                                        -cfg_.incident.length / cfg_.incident.wave_speed(),
-                                       cfg_.rise_time)),
+                                       cfg_.rise_time, cfg_.smooth_rise)),
       transmitted_(cfg_.transmitted, nullptr),
       bars_{cfg_, {}, {}, c.boundary.width(), c.boundary.height()},
       state_(measure::measure_specimen(c.model, c.boundary, c.solver)) {
@@ -184,8 +191,8 @@ void ShpbDriver::set_up_block_bars() {
   // (2 rho c0 v_in with v_in = sigma / rho c0): the wave a striker of the bar's material and
   // section sends, rise and fall included; the end absorbs what comes back.
   const loading::BarProperties& in = cfg_.incident;
-  const auto pulse =
-      loading::striker_pulse(in, cfg_.striker_length, cfg_.striker_velocity, 0.0, cfg_.rise_time);
+  const auto pulse = loading::striker_pulse(in, cfg_.striker_length, cfg_.striker_velocity, 0.0,
+                                            cfg_.rise_time, cfg_.smooth_rise);
   const double z_in = in.impedance();
   const auto bar = [&](Group platen, Group group, const std::vector<double>& xs, double sign,
                        const loading::BarProperties& p, std::optional<loading::QuietBoundary>& q,

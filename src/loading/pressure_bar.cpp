@@ -27,13 +27,14 @@ double ElasticBar::far_emitted(double t) const {
 }
 
 std::function<double(double)> striker_pulse(const BarProperties& bar, double ls, double v,
-                                            double t0, double rise) {
+                                            double t0, double rise, bool smooth) {
   const double sigma = 0.5 * bar.impedance() * v, duration = 2.0 * ls / bar.wave_speed();
   return [=](double t) {
     const double u = t - t0;
     if (u < 0.0 || u >= duration) return 0.0;
     if (rise <= 0.0) return sigma;
-    return sigma * std::min({1.0, u / rise, (duration - u) / rise});
+    const double ramp = std::min({1.0, u / rise, (duration - u) / rise});
+    return smooth ? sigma * 0.5 * (1.0 - std::cos(M_PI * ramp)) : sigma * ramp;
   };
 }
 

@@ -66,10 +66,11 @@ class ElasticBar {
 
 // The stress a striker of length ls m and speed v m/s, of the incident bar's material, sends into
 // it from impact time t0 s: rho c0 v / 2 for 2 ls / c0 (verification case A12); then it has
-// separated. rise > 0 s: the pulse rises and falls linearly over that time within the same duration
-// (a pulse shaper's ramp).
+// separated. rise > 0 s: the pulse rises and falls over that time within the same duration (a
+// pulse shaper's ramp), linearly or, `smooth`, as a raised cosine (no corner at either end of the
+// rise, which would set the specimen ringing: docs/dynamics.md).
 std::function<double(double)> striker_pulse(const BarProperties& bar, double ls, double v,
-                                            double t0, double rise = 0.0);
+                                            double t0, double rise = 0.0, bool smooth = false);
 
 // [shpb]: a split Hopkinson pressure bar test instead of [[stage]]s (docs/theory.md §16): a striker
 // hits the incident bar, whose face is the top platen; the transmitted bar's face is the bottom
@@ -79,7 +80,8 @@ struct ShpbConfig final : ExtensionSettings {
   std::vector<double> incident_gauges, transmitted_gauges;  // m from the specimen face
   double striker_length = 0;                                // m, of the incident bar's material
   double striker_velocity = 0;                              // m/s
-  double rise_time = 0;        // s, the pulse's linear rise and fall (a pulse shaper); 0: none
+  double rise_time = 0;        // s, the pulse's rise and fall (a pulse shaper); 0: none
+  bool smooth_rise = false;    // the rise and fall as a raised cosine, not a linear ramp
   double duration = 0;         // s of the specimen's loading; 0: twice the pulse's duration
   double record_interval = 0;  // s between bars.csv rows; 0: the pulse's duration / 1000
   double equilibrium_tolerance = 0.05;  // -, |eta| of "in equilibrium"
