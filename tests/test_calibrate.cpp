@@ -217,6 +217,34 @@ TEST(Calibrate, HistoryPointReachedBeforeARunStoppedUnstableCounts) {
             std::string::npos);
 }
 
+TEST(Calibrate, EvaluationStartsTheRunsThatTookLongestBeforeFirst) {
+  // "long" strains five times as far as "short" but is listed second: the first evaluation runs
+  // them in the listed order, the second (the sensitivity round) starts "long" first. One job at
+  // a time, so the runs end in the order they start.
+  const fs::path dir = out_dir("calibrate_longest_first");
+  const std::string stage =
+      "base = \"{}\"\n[[stage]]\nname = \"load\"\nplaten_velocity = 0.02\nramp_time = 2e-4\n"
+      "end_axial_strain = {}\n";
+  write(dir, "short.toml", fmt::format(fmt::runtime(stage), kModel, 2e-4));
+  write(dir, "long.toml", fmt::format(fmt::runtime(stage), kModel, 1e-3));
+  const fs::path file =
+      write(dir, "c.toml",
+            "title = \"longest first\"\nseeds = [11]\n[budget]\nruns = 6\nwall_time = 600\n"
+            "[[test]]\nname = \"short\"\nmodel = \"short.toml\"\n"
+            "[[test]]\nname = \"long\"\nmodel = \"long.toml\"\n"
+            "[[parameter]]\nkey = \"joints.jkn\"\nmin = 5e12\nmax = 1e14\nstart = 1.8e13\n"
+            "scale = \"log\"\n"
+            "[[target]]\nname = \"stress\"\ntest = \"long\"\nquantity = \"history.axial_stress\"\n"
+            "at = { stage = \"load:end\" }\nvalue = 1e9\ntolerance = 0.01\n");
+  const auto o = run_capture(
+      fmt::format("calibrate {} --out {} --jobs 1", file.string(), (dir / "out").string()));
+  EXPECT_EQ(o.code, 5) << o.output;  // the budget spent: no stiffness gives 1 GPa at that strain
+  const auto at = [&](const std::string& run) { return o.output.find(run + "_seed11: exit 0"); };
+  ASSERT_NE(at("e0002/long"), std::string::npos) << o.output;
+  EXPECT_LT(at("e0001/short"), at("e0001/long")) << o.output;
+  EXPECT_LT(at("e0002/long"), at("e0002/short")) << o.output;
+}
+
 TEST(Calibrate, TargetNoTestProducesExitsTwoNamingTheTarget) {
   const fs::path dir = out_dir("calibrate_no_tension");
   const std::string extra =
@@ -296,6 +324,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCalibration{"quantity = \"peak_stress_Pa\"", "quantity = \"peak_strength\"",
                        "key 'target[1].quantity': 'peak_strength' is not produced by any test"},
         BadCalibration{"seeds = [11, 12]", "seeds = []", "bad.toml:2: key 'seeds'"},
+        BadCalibration{"seeds = [11, 12]", "seeds = [11, 12]\nlinearised_steps = 101",
+                       "bad.toml:3: key 'linearised_steps'"},
+        BadCalibration{"seeds = [11, 12]", "seeds = [11, 12]\nsecant_update = 1",
+                       "bad.toml:3: key 'secant_update'"},
         BadCalibration{"quantity = \"peak_stress_Pa\"", "quantity = \"history.axial_stress\"",
                        "key 'target[1].at': a history quantity needs `at`"},
         BadCalibration{"quantity = \"peak_stress_Pa\"",

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <nlopt.hpp>
+#include <numeric>
 #include <sstream>
 #include <thread>
 
@@ -138,6 +139,8 @@ class Calibration {
   std::pair<std::vector<double>, double> linearised_step(const Evaluation& from,
                                                          const Sensitivity& s, double radius) const;
   void linearised_steps(const Sensitivity& s);
+  void broyden_update(std::vector<double>& jacobian, const Evaluation& from,
+                      const Evaluation& to) const;
   void optimise();
   void finish(bool done);
 
@@ -163,6 +166,8 @@ class Calibration {
   std::size_t runs_used_ = 0;
   double shared_seconds_ = 0;  // s, rank 0's elapsed() after the last evaluation
   double point_seconds_ = 0;   // s per point of the last evaluation
+  // s, each test x seed's latest run: the next evaluation deals its runs longest first.
+  std::vector<double> case_seconds_;
   bool search_ended_ = false;  // BOBYQA stopped on its own (steps below its tolerance)
   bool restart_ = false;       // BOBYQA stopped to start again from a rescaled best
   std::vector<Evaluation> history_;
@@ -192,10 +197,20 @@ std::vector<Evaluation> Calibration::evaluate(std::vector<std::vector<double>> p
         cases.push_back({fmt::format("e{:04d}/{}_seed{}", folder, plan_.tests[t].name, seed),
                          plan_.tests[t].model, run_overrides(plan_, t, seed, points[k])});
   }
+  // Longest first, by each test x seed's last run (in the listed order before any has run): the
+  // runs finish together instead of one long confined run on a core while the others idle. The
+  // order changes no result; every rank computes it from the same shared times.
+  const std::size_t n = runs_per_point();
+  std::vector<std::size_t> order(cases.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  if (case_seconds_.size() == n)
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return case_seconds_[a % n] > case_seconds_[b % n];
+    });
   std::vector<std::size_t> mine;
-  for (std::size_t i = static_cast<std::size_t>(cluster_.rank()); i < cases.size();
-       i += static_cast<std::size_t>(cluster_.size()))
-    mine.push_back(i);
+  for (std::size_t p = static_cast<std::size_t>(cluster_.rank()); p < order.size();
+       p += static_cast<std::size_t>(cluster_.size()))
+    mine.push_back(order[p]);
   const std::string who = cluster_.size() > 1 ? fmt::format("rank {}: ", cluster_.rank()) : "";
   const double before = shared_seconds_;
   std::string rows;
@@ -232,8 +247,9 @@ std::vector<Evaluation> Calibration::evaluate(std::vector<std::vector<double>> p
                       cases[i].name, code));
   }
   point_seconds_ = std::max(0.0, shared_seconds_ - before) / static_cast<double>(points.size());
+  case_seconds_.assign(n, 0.0);
+  for (std::size_t i = 0; i < cases.size(); ++i) case_seconds_[i % n] = per_case[i].at(1);
   std::vector<Evaluation> out;
-  const std::size_t n = runs_per_point();
   for (std::size_t k = 0; k < points.size(); ++k) {
     const std::vector<std::vector<double>> mine_k(per_case.begin() + static_cast<long>(k * n),
                                                   per_case.begin() + static_cast<long>(k * n + n));
@@ -424,25 +440,52 @@ std::pair<std::vector<double>, double> Calibration::linearised_step(const Evalua
   return {v, du.lpNorm<Eigen::Infinity>()};
 }
 
-// Gauss-Newton steps with the one sensitivity (chord steps), each from the best set so far and
+// Gauss-Newton steps from the sensitivity round's Jacobian, each from the best set so far and
 // within a trust radius of a quarter of each parameter's range: a step that is no better (or
 // whose runs fail) is retried with half the radius (half its own largest move if that is less),
-// twice at most; a step that no retry improves ends them. Far from the targets they move every
-// target at once, where BOBYQA's first steps, sized to one tolerance, crawl (the granite's start
-// was 14 tolerances off in E).
+// twice at most; a step that no retry improves ends them. After every evaluated step the Jacobian
+// takes that step's secant (Broyden's update, docs/bibliography.md [Broyden1965]): the next step
+// sees how the targets bent along the last one, at no extra run. Far from the targets they move
+// every target at once, where BOBYQA's first steps, sized to one tolerance, crawl (the granite's
+// start was 14 tolerances off in E), and near them they end the search in a few evaluations where
+// BOBYQA first spends 2n + 1 on its model.
 void Calibration::linearised_steps(const Sensitivity& s) {
-  constexpr int kSteps = 4, kHalvings = 2;
-  for (int k = 0; k < kSteps && !converged(best_); ++k) {
+  constexpr int kHalvings = 2;
+  Sensitivity secant = s;
+  for (int k = 0; k < plan_.linearised_steps && !converged(best_); ++k) {
     const Evaluation from = best_;
     bool improved = false;
     double radius = 0.25;
     for (int h = 0; h <= kHalvings && !improved && affordable(1); ++h) {
-      const auto [values, moved] = linearised_step(from, s, radius);
-      improved = evaluate({values}, "linearised").front().index == best_.index;
+      const auto [values, moved] = linearised_step(from, secant, radius);
+      const Evaluation e = evaluate({values}, "linearised").front();
+      improved = e.index == best_.index;
+      if (plan_.secant_update) broyden_update(secant.jacobian, from, e);
       // Half the radius, or half the step when it fits inside that (else it would be the same).
       radius = moved > radius / 2 ? radius / 2 : moved / 2;
     }
     if (!improved) return;
+  }
+}
+
+// J += (dr - J du) du^T / (du^T du): the least change of J that reproduces the step from `from`
+// to `to` (scaled errors r, unit coordinates u). A step whose runs failed says nothing.
+void Calibration::broyden_update(std::vector<double>& jacobian, const Evaluation& from,
+                                 const Evaluation& to) const {
+  const std::size_t m = plan_.targets.size(), n = from.values.size();
+  std::vector<double> du(n);
+  double norm2 = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    du[j] = to_unit(j, to.values[j]) - to_unit(j, from.values[j]);
+    norm2 += du[j] * du[j];
+  }
+  if (!(norm2 > 0)) return;
+  for (std::size_t i = 0; i < m; ++i)
+    if (!std::isfinite(from.scaled_error[i]) || !std::isfinite(to.scaled_error[i])) return;
+  for (std::size_t i = 0; i < m; ++i) {
+    double missed = to.scaled_error[i] - from.scaled_error[i];
+    for (std::size_t j = 0; j < n; ++j) missed -= jacobian[i * n + j] * du[j];
+    for (std::size_t j = 0; j < n; ++j) jacobian[i * n + j] += missed * du[j] / norm2;
   }
 }
 

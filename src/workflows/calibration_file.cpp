@@ -391,6 +391,8 @@ CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
   plan.step = top.number("step", 0.1);
   if (!(plan.step > 0 && plan.step < 1))
     top.fail("step", "the sensitivity step is a fraction of the value in (0, 1)");
+  plan.linearised_steps = static_cast<int>(top.integer("linearised_steps", 8, 0, 100));
+  plan.secant_update = top.boolean("secant_update", true);
   read_budget(top.sub("budget"), plan);
   plan.tests = read_tests(top, file);
   std::vector<std::vector<std::string>> scale_names;

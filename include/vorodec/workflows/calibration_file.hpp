@@ -85,6 +85,8 @@ struct CalibrationPlan {
   long max_runs = 0;            // model runs, the sensitivity round included
   double max_wall_seconds = 0;  // s
   double step = 0.1;            // the sensitivity round's relative step (log scale: ln(1.1))
+  int linearised_steps = 8;     // Gauss-Newton steps after the sensitivity round, at most
+  bool secant_update = true;    // each step's secant corrects their Jacobian (Broyden)
   std::vector<CalibrationTest> tests;
   std::vector<CalibrationParameter> parameters;
   std::vector<Tie> ties;
