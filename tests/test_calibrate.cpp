@@ -140,11 +140,13 @@ TEST(Calibrate, RecoversPlantedParametersFromAWrongStartAndReplaysOnRerunUnderAn
   EXPECT_NE(report.find("every target within its tolerance"), std::string::npos) << report;
   EXPECT_EQ(run_vorodec("check " + model.string()), 0);  // a model file as any other
 
-  // Run again, the file named through "./": every run is kept, the search takes the same path to
-  // the same parameters.
+  // Run again, the file and the folder named relative to the working directory (the file through
+  // "./"), where the first run named them absolutely: every run is kept, the search takes the
+  // same path to the same parameters.
   const std::string before = slurp(model);
-  const auto again = run_capture(
-      fmt::format("calibrate {} --out {}", (dir / "." / "planted.toml").string(), out.string()));
+  const auto again = run_capture(fmt::format("calibrate {} --out {}",
+                                             (fs::relative(dir) / "." / "planted.toml").string(),
+                                             fs::relative(out).string()));
   ASSERT_EQ(again.code, 0) << again.output;
   EXPECT_EQ(again.output.find(": exit "), std::string::npos) << "a run ran again:\n"
                                                              << again.output;

@@ -266,7 +266,8 @@ std::vector<CalibrationTest> read_tests(TomlSection& top, const std::filesystem:
     for (const CalibrationTest& u : list)
       if (u.name == t.name) sec.fail("name", fmt::format("two tests are named '{}'", t.name));
     t.model = sec.string("model", nullptr);
-    if (t.model.is_relative()) t.model = (file.parent_path() / t.model).lexically_normal();
+    if (t.model.is_relative())
+      t.model = (std::filesystem::absolute(file).parent_path() / t.model).lexically_normal();
     if (!std::filesystem::is_regular_file(t.model))
       sec.fail("model", fmt::format("model file '{}' does not exist", t.model.string()));
     t.overrides = read_set(sec);
@@ -384,7 +385,8 @@ CalibrationPlan read_calibration_file(const std::filesystem::path& file) {
   const toml::table root = parse_toml_file(file);
   const std::string name = file.string();
   CalibrationPlan plan;
-  plan.file = file.lexically_normal();  // the same file however it is spelled
+  // The same file however it is spelled (relative, absolute, through "./"): its runs replay.
+  plan.file = std::filesystem::absolute(file).lexically_normal();
   TomlSection top(root, "", name);
   read_title_and_output(top, file, plan.title, plan.output);
   plan.seeds = read_seeds(top);

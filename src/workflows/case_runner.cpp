@@ -54,11 +54,15 @@ std::string joined(const std::vector<std::string>& args) {
 }
 
 // What a case is: its command line and what its model files hold (an edited model is another case).
-std::string case_identity(const BatchCase& c, const std::vector<std::string>& command) {
+// The command names the model and the folder by absolute paths, so that a rerun spelling them
+// otherwise (relative or absolute, through "./") is the same case.
+std::string case_identity(const BatchCase& c, const fs::path& dir, const CaseOptions& options) {
+  BatchCase named = c;
+  named.model = fs::absolute(c.model).lexically_normal();
   std::vector<std::string> overrides;
   for (const io::Override& o : c.overrides) overrides.insert(overrides.end(), {o.key, o.value});
   const io::ModelConfig cfg = run::read_model_file(c.model, c.overrides);
-  return joined(command) +
+  return joined(case_command(named, fs::absolute(dir).lexically_normal(), options)) +
          fmt::format("model files crc32 {:08x}\n", checkpoint::model_hash(cfg.sources, overrides));
 }
 
@@ -227,7 +231,7 @@ std::map<std::size_t, CaseOutcome> run_cases(const std::vector<BatchCase>& cases
       const fs::path dir = out / c.name;
       fs::create_directories(dir);
       const std::vector<std::string> command = case_command(c, dir, options);
-      const std::string identity = case_identity(c, command);
+      const std::string identity = case_identity(c, dir, options);
       if (const std::optional<CaseOutcome> o = finished_before(dir, identity)) {
         done[i] = *o;
         fmt::print("{}case {}/{} {}: kept, it finished before (exit {})\n", who, i + 1,
