@@ -49,7 +49,7 @@ void BM_Step(benchmark::State& state) {
   counters(state, pm, static_cast<double>(pm.model->zoning.zones.size()));
 }
 
-// The zone kernel alone: strains, stresses and forces of every zone, gathered per gridpoint.
+// The zone kernel alone: strains, stresses and forces of every zone, added to its gridpoints.
 void BM_ZoneForces(benchmark::State& state) {
   run::PreparedModel pm = loaded(state);
   std::vector<double> fx, fy;

@@ -154,8 +154,6 @@ void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double densit
       za.gp[k].push_back(zone.gp[k]);
       za.bx[k].push_back(zone.bx[k]);
       za.by[k].push_back(zone.by[k]);
-      za.fx[k].push_back(0.0);
-      za.fy[k].push_back(0.0);
     }
     za.area.push_back(zone.area);
     za.lambda.push_back(zone.lambda);
@@ -178,6 +176,7 @@ void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double densit
   z.arrays.ux.resize(z.gridpoints(), 0.0);
   z.arrays.uy.resize(z.gridpoints(), 0.0);
   z.blocks.push_back(b);
+  z.zone_begin.push_back(static_cast<std::uint32_t>(z.zones.size() - mesh.zones.size()));
   z.gp_begin.push_back(base);
   z.gp_end.push_back(static_cast<std::uint32_t>(z.gridpoints()));
   refresh_deformable(model);
@@ -212,26 +211,32 @@ void refresh_deformable(Model& model) {
 
 namespace {
 
-// Each zone's strain, stress and corner forces from the displacements q.ux, q.uy; `in_situ`: with
-// the stress the zone started with (a separate instance, so a zoning without one pays nothing).
+// Corner forces of a run of zones, kept small enough to stay in the first-level cache between
+// the vector pass that computes them and the pass that adds them to the gridpoints.
+constexpr std::int64_t kZoneChunk = 256;
+struct ChunkForces {
+  alignas(64) double fx0[kZoneChunk], fx1[kZoneChunk], fx2[kZoneChunk];
+  alignas(64) double fy0[kZoneChunk], fy1[kZoneChunk], fy2[kZoneChunk];
+};
+
+// Zones [begin, end)'s strain, stress and corner forces (into f, from index 0) from the
+// displacements q.ux, q.uy; `in_situ`: with the stress the zone started with (a separate instance,
+// so a zoning without one pays nothing). Every zone on its own, the same arithmetic in the vector
+// body and the remainder: the result does not depend on how the zones are split.
 template <bool in_situ>
-void stress_zones(Zoning& z) {
+void stress_zones(Zoning& z, std::int64_t begin, std::int64_t end, ChunkForces& f) {
   ZoneArrays& q = z.arrays;
-  const auto nz = static_cast<std::int64_t>(z.zones.size());
   const double *ux = q.ux.data(), *uy = q.uy.data();
   const std::uint32_t *g0 = q.gp[0].data(), *g1 = q.gp[1].data(), *g2 = q.gp[2].data();
   const double *bx0 = q.bx[0].data(), *bx1 = q.bx[1].data(), *bx2 = q.bx[2].data();
   const double *by0 = q.by[0].data(), *by1 = q.by[1].data(), *by2 = q.by[2].data();
   const double *area = q.area.data(), *lambda = q.lambda.data(), *shear = q.shear.data();
-  double *fx0 = q.fx[0].data(), *fx1 = q.fx[1].data(), *fx2 = q.fx[2].data();
-  double *fy0 = q.fy[0].data(), *fy1 = q.fy[1].data(), *fy2 = q.fy[2].data();
+  double *fx0 = f.fx0, *fx1 = f.fx1, *fx2 = f.fx2, *fy0 = f.fy0, *fy1 = f.fy1, *fy2 = f.fy2;
   double *sxx = z.sxx.data(), *syy = z.syy.data(), *sxy = z.sxy.data(), *szz = z.szz.data();
   double *exx_w = z.exx.data(), *eyy_w = z.eyy.data(), *gxy_w = z.gxy.data();
   const double *s0xx = q.s0xx.data(), *s0yy = q.s0yy.data(), *s0xy = q.s0xy.data();
-  // Every zone on its own, the same arithmetic in the vector body and the remainder: the result
-  // does not depend on how the zones are split between threads.
-#pragma omp parallel for simd schedule(simd : static) if (nz >= 2048)
-  for (std::int64_t i = 0; i < nz; ++i) {
+#pragma omp simd
+  for (std::int64_t i = begin; i < end; ++i) {
     // Deformation gradient F = [[a, b], [c, d]] = I + grad u over the initial zone.
     const double u0 = ux[g0[i]], u1 = ux[g1[i]], u2 = ux[g2[i]];
     const double v0 = uy[g0[i]], v1 = uy[g1[i]], v2 = uy[g2[i]];
@@ -259,12 +264,13 @@ void stress_zones(Zoning& z) {
     const double pxx = cs * txx - sn * txy, pxy = cs * txy - sn * tyy;
     const double pyx = sn * txx + cs * txy, pyy = sn * txy + cs * tyy;
     const double A = area[i];
-    fx0[i] = -A * (pxx * bx0[i] + pxy * by0[i]);
-    fy0[i] = -A * (pyx * bx0[i] + pyy * by0[i]);
-    fx1[i] = -A * (pxx * bx1[i] + pxy * by1[i]);
-    fy1[i] = -A * (pyx * bx1[i] + pyy * by1[i]);
-    fx2[i] = -A * (pxx * bx2[i] + pxy * by2[i]);
-    fy2[i] = -A * (pyx * bx2[i] + pyy * by2[i]);
+    const std::int64_t k = i - begin;
+    fx0[k] = -A * (pxx * bx0[i] + pxy * by0[i]);
+    fy0[k] = -A * (pyx * bx0[i] + pyy * by0[i]);
+    fx1[k] = -A * (pxx * bx1[i] + pxy * by1[i]);
+    fy1[k] = -A * (pyx * bx1[i] + pyy * by1[i]);
+    fx2[k] = -A * (pxx * bx2[i] + pxy * by2[i]);
+    fy2[k] = -A * (pyx * bx2[i] + pyy * by2[i]);
     // Stress and strain turned into the world frame: R T R^T and R (U - I) R^T.
     const double c2 = cs * cs, s2 = sn * sn, cssn = cs * sn;
     sxx[i] = c2 * txx - 2.0 * cssn * txy + s2 * tyy;
@@ -277,50 +283,64 @@ void stress_zones(Zoning& z) {
   }
 }
 
-}  // namespace
-
-void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
-  ZoneArrays& q = z.arrays;
-  const auto ng = static_cast<std::int64_t>(z.gridpoints());
-  const double *x = z.x.data(), *y = z.y.data(), *x0 = z.x0.data(), *y0 = z.y0.data();
-  double *ux_w = q.ux.data(), *uy_w = q.uy.data();
-#pragma omp parallel for simd schedule(simd : static) if (ng >= 2048)
-  for (std::int64_t g = 0; g < ng; ++g) {
-    ux_w[g] = x[g] - x0[g];
-    uy_w[g] = y[g] - y0[g];
-  }
-  if (q.s0xx.empty())
-    stress_zones<false>(z);
-  else
-    stress_zones<true>(z);
-  out_fx.assign(z.gridpoints(), 0.0);
-  out_fy.assign(z.gridpoints(), 0.0);
-  // Added zone after zone: every gridpoint sums its zones in zone order. A block's zones touch only
-  // its own gridpoints, so the threads take whole blocks and the sums do not depend on their count.
+// Each thread takes whole blocks, about as many zones each: a block's zones touch only its own
+// gridpoints, so a thread needs no other's displacements, and every gridpoint sums its zones in
+// zone order whatever the number of threads.
+template <bool in_situ>
+void add_zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
   const auto nz = static_cast<std::int64_t>(z.zones.size());
-  const std::uint32_t* owner = z.zone_block.data();
+  const auto nd = static_cast<std::int64_t>(z.blocks.size());
+  ZoneArrays& q = z.arrays;
   const std::uint32_t *g0 = q.gp[0].data(), *g1 = q.gp[1].data(), *g2 = q.gp[2].data();
-  const double *fx0 = q.fx[0].data(), *fx1 = q.fx[1].data(), *fx2 = q.fx[2].data();
-  const double *fy0 = q.fy[0].data(), *fy1 = q.fy[1].data(), *fy2 = q.fy[2].data();
-  double *ox = out_fx.data(), *oy = out_fy.data();
+  const std::uint32_t* zone_begin = z.zone_begin.data();
+  const double *x = z.x.data(), *y = z.y.data(), *x0 = z.x0.data(), *y0 = z.y0.data();
+  double *ux = q.ux.data(), *uy = q.uy.data(), *ox = out_fx.data(), *oy = out_fy.data();
 #pragma omp parallel if (nz >= 2048)
   {
     const std::int64_t parts = omp_get_num_threads(), t = omp_get_thread_num();
-    const auto block_start = [&](std::int64_t k) {
-      std::int64_t i = nz * k / parts;
-      while (i > 0 && i < nz && owner[i] == owner[i - 1]) ++i;
-      return i;
-    };
-    const std::int64_t end = block_start(t + 1);
-    for (std::int64_t i = block_start(t); i < end; ++i) {
-      ox[g0[i]] += fx0[i];
-      oy[g0[i]] += fy0[i];
-      ox[g1[i]] += fx1[i];
-      oy[g1[i]] += fy1[i];
-      ox[g2[i]] += fx2[i];
-      oy[g2[i]] += fy2[i];
+    const auto first_block =
+        [&](std::int64_t part) {  // of the blocks from zone nz * part / parts on
+          return std::lower_bound(zone_begin, zone_begin + nd, nz * part / parts) - zone_begin;
+        };
+    const std::int64_t k0 = first_block(t), k1 = first_block(t + 1);
+    if (k0 < k1) {
+      const std::int64_t gb = z.gp_begin[static_cast<std::size_t>(k0)];
+      const std::int64_t ge = z.gp_end[static_cast<std::size_t>(k1 - 1)];
+#pragma omp simd
+      for (std::int64_t g = gb; g < ge; ++g) {
+        ux[g] = x[g] - x0[g];
+        uy[g] = y[g] - y0[g];
+        ox[g] = 0.0;
+        oy[g] = 0.0;
+      }
+      const std::int64_t end = k1 < nd ? zone_begin[k1] : nz;
+      ChunkForces f;
+      for (std::int64_t s = zone_begin[k0]; s < end; s += kZoneChunk) {
+        const std::int64_t e = std::min(s + kZoneChunk, end);
+        stress_zones<in_situ>(z, s, e, f);
+        for (std::int64_t i = s; i < e; ++i) {
+          const std::int64_t k = i - s;
+          ox[g0[i]] += f.fx0[k];
+          oy[g0[i]] += f.fy0[k];
+          ox[g1[i]] += f.fx1[k];
+          oy[g1[i]] += f.fy1[k];
+          ox[g2[i]] += f.fx2[k];
+          oy[g2[i]] += f.fy2[k];
+        }
+      }
     }
   }
+}
+
+}  // namespace
+
+void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy) {
+  out_fx.resize(z.gridpoints());
+  out_fy.resize(z.gridpoints());
+  if (z.arrays.s0xx.empty())
+    add_zone_forces<false>(z, out_fx, out_fy);
+  else
+    add_zone_forces<true>(z, out_fx, out_fy);
 }
 
 std::vector<double> zone_stiffness_bound(const Zoning& z) {

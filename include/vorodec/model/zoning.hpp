@@ -47,8 +47,7 @@ struct ZoneArrays {
   std::array<std::vector<std::uint32_t>, 3> gp;
   std::array<std::vector<double>, 3> bx, by;
   std::vector<double> area, lambda, shear;
-  std::vector<double> ux, uy;                 // m, per gridpoint: displacement this step
-  std::array<std::vector<double>, 3> fx, fy;  // N per m, per zone: force on each corner
+  std::vector<double> ux, uy;  // m, per gridpoint: displacement this step
   // Pa, per zone: the in-situ stress it started with (tension positive, the zone's initial frame),
   // added to its elastic stress; empty: none (docs/theory.md §6.7).
   std::vector<double> s0xx, s0yy, s0xy;
@@ -87,8 +86,8 @@ struct Zoning {
   // Per block corner (Blocks::corner index): its gridpoint, or -1 on a rigid block.
   std::vector<std::int32_t> corner_gp;
   CornerArrays corners;
-  // Deformable blocks and the range of their gridpoints.
-  std::vector<std::uint32_t> blocks, gp_begin, gp_end;
+  // Deformable blocks, the range of their gridpoints and where their zones begin.
+  std::vector<std::uint32_t> blocks, gp_begin, gp_end, zone_begin;
 
   std::size_t gridpoints() const { return x.size(); }
   ZoneStress stress(std::size_t zone) const { return {sxx[zone], syy[zone], sxy[zone], szz[zone]}; }
