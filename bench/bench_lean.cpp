@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "specimens.hpp"
 #include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
@@ -163,21 +164,10 @@ void lean_step(LeanModel& m) {
   }
 }
 
-// The default model's material on a specimen of `blocks` blocks (as BM_ScaledStepFixed's).
-io::ModelConfig scaled(int blocks) {
-  io::ModelConfig cfg =
-      run::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
-  const double width = std::sqrt(0.05 * 0.1 / 1302.0 * blocks / 2.0);
-  cfg.tessellation.outline.width = width;
-  cfg.tessellation.outline.height = 2.0 * width;
-  cfg.tessellation.block_count = blocks;
-  return cfg;
-}
-
 // Exactly 200 lean steps after vorodec's 300 loading steps, as BM_ScaledStepFixed: cu/s per core.
 void BM_LeanStepFixed(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
-  const io::ModelConfig cfg = scaled(static_cast<int>(state.range(0)));
+  const io::ModelConfig cfg = bench::scaled_model(static_cast<int>(state.range(0)));
   run::PreparedModel pm = run::prepare_model(cfg, run::make_specimen(cfg));
   loading::SpecimenBoundary(*pm.model).set_platen_velocity(*pm.model, 0.05);
   for (int i = 0; i < 300; ++i) pm.solver->step();

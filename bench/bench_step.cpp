@@ -8,29 +8,17 @@
 #include <cmath>
 #include <filesystem>
 
+#include "specimens.hpp"
 #include "vorodec/checkpoint/checkpoint_file.hpp"
 #include "vorodec/drivers/registry.hpp"
 #include "vorodec/engine/prepared_model.hpp"
 #include "vorodec/loading/boundary.hpp"
 
 using namespace vorodec;
+using bench::default_model;
+using bench::scaled_model;
 
 namespace {
-
-io::ModelConfig default_model() {
-  return run::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/models/ucs_marble.toml");
-}
-
-// The default model's material on a square-ish specimen with `blocks` blocks of the same size.
-io::ModelConfig scaled_model(int blocks) {
-  io::ModelConfig cfg = default_model();
-  const double area_per_block = 0.05 * 0.1 / 1302.0;
-  const double width = std::sqrt(area_per_block * blocks / 2.0);
-  cfg.tessellation.outline.width = width;
-  cfg.tessellation.outline.height = 2.0 * width;
-  cfg.tessellation.block_count = blocks;
-  return cfg;
-}
 
 void run_steps(benchmark::State& state, const io::ModelConfig& cfg) {
   omp_set_num_threads(static_cast<int>(state.range(1)));

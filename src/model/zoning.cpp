@@ -298,10 +298,10 @@ void add_zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>
 #pragma omp parallel if (nz >= 2048)
   {
     const std::int64_t parts = omp_get_num_threads(), t = omp_get_thread_num();
-    const auto first_block =
-        [&](std::int64_t part) {  // of the blocks from zone nz * part / parts on
-          return std::lower_bound(zone_begin, zone_begin + nd, nz * part / parts) - zone_begin;
-        };
+    // The first block at or after zone nz * part / parts.
+    const auto first_block = [&](std::int64_t part) {
+      return std::lower_bound(zone_begin, zone_begin + nd, nz * part / parts) - zone_begin;
+    };
     const std::int64_t k0 = first_block(t), k1 = first_block(t + 1);
     if (k0 < k1) {
       const std::int64_t gb = z.gp_begin[static_cast<std::size_t>(k0)];
