@@ -41,9 +41,9 @@ void preload_zones(model::Zoning& z, solver::Solver& solver, const loading::InSi
     const auto& gp = z.zones[i].gp;
     const double y = (z.y0[gp[0]] + z.y0[gp[1]] + z.y0[gp[2]]) / 3.0;
     const loading::StressTensor s = field.at(y);
-    q.s0xx[i] = z.sxx[i] = -s.xx;
-    q.s0yy[i] = z.syy[i] = -s.yy;
-    q.s0xy[i] = z.sxy[i] = -s.xy;
+    q.s0xx[i] = -s.xx;
+    q.s0yy[i] = -s.yy;
+    q.s0xy[i] = -s.xy;
   }
   solver.add_initial_energy(model::zone_strain_energy(z));
 }

@@ -9,8 +9,8 @@ namespace vorodec::model {
 // below) or comes again from the model file or the loaded state (say so there); then update these
 // sizes.
 static_assert(sizeof(Blocks) == 624, "Blocks changed: see state()");
-static_assert(sizeof(Zoning) == 1344, "Zoning changed: see state()");
-static_assert(sizeof(Model) == 2008, "Model changed: see state()");
+static_assert(sizeof(Zoning) == 1176, "Zoning changed: see state()");
+static_assert(sizeof(Model) == 1840, "Model changed: see state()");
 static_assert(sizeof(Contact) == 88, "Contact changed: see state()");
 
 namespace {
@@ -28,12 +28,12 @@ void state(Archive& ar, M& m) {
   // Deformable blocks' corner arcs and edge constants follow their gridpoints.
   ar(pod(b.shape));
   ar(pod(m.contacts));
-  // The zones' and corners' arrays (the in-situ stress too) come again from the model file; their
-  // scratch is redone in every step.
+  // The zones' and corners' arrays (the in-situ stress too) come again from the model file, and
+  // their scratch is redone in every step; the displacements of the last force pass hold the
+  // zones' stress and strain.
   auto& z = m.zoning;
   ar(pod(z.x), pod(z.y), pod(z.vx), pod(z.vy), pod(z.mass), pod(z.fx), pod(z.fy), pod(z.cfx),
-     pod(z.cfy), pod(z.prescribed), pod(z.sxx), pod(z.syy), pod(z.sxy), pod(z.szz), pod(z.exx),
-     pod(z.eyy), pod(z.gxy));
+     pod(z.cfy), pod(z.prescribed), pod(z.arrays.ux), pod(z.arrays.uy));
 }
 
 }  // namespace

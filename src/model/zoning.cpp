@@ -158,7 +158,6 @@ void add_zoned_block(Model& model, const geometry::ZoneMesh& mesh, double densit
     za.area.push_back(zone.area);
     za.lambda.push_back(zone.lambda);
     za.shear.push_back(zone.shear);
-    for (auto* v : {&z.sxx, &z.syy, &z.sxy, &z.szz, &z.exx, &z.eyy, &z.gxy}) v->push_back(0.0);
     z.zone_block.push_back(b);
   }
   z.corner_gp.resize(bl.corner.size(), -1);
@@ -211,6 +210,54 @@ void refresh_deformable(Model& model) {
 
 namespace {
 
+// A zone in its own frame from its corners' displacements (u, v) and shape derivatives (bx, by):
+// the force pass and the stress and strain asked for later both start here, so they agree to the
+// last bit.
+struct ZoneFrame {
+  double cs, sn;              // R: the zone's turn
+  double exx, eyy, exy;       // U - I (exy the tensor shear strain)
+  double txx, tyy, txy, vol;  // Pa, the Biot stress D (U - I); vol = lambda (exx + eyy)
+};
+[[gnu::always_inline]] inline ZoneFrame zone_frame(double u0, double u1, double u2, double v0,
+                                                   double v1, double v2, double bx0, double bx1,
+                                                   double bx2, double by0, double by1, double by2,
+                                                   double lambda, double shear) {
+  // Deformation gradient F = [[a, b], [c, d]] = I + grad u over the initial zone.
+  const double a = 1 + bx0 * u0 + bx1 * u1 + bx2 * u2;
+  const double b = by0 * u0 + by1 * u1 + by2 * u2;
+  const double c = bx0 * v0 + bx1 * v1 + bx2 * v2;
+  const double d = 1 + by0 * v0 + by1 * v1 + by2 * v2;
+  // Polar decomposition F = R U (2D: R turns by atan2(c - b, a + d)); the strain U - I is the
+  // zone's own, so a rigid rotation of any size leaves it stress-free.
+  const double inv_r = 1.0 / std::sqrt((a + d) * (a + d) + (c - b) * (c - b));
+  ZoneFrame r;
+  r.cs = (a + d) * inv_r;
+  r.sn = (c - b) * inv_r;
+  r.exx = r.cs * a + r.sn * c - 1.0;
+  r.eyy = r.cs * d - r.sn * b - 1.0;
+  r.exy = r.cs * b + r.sn * d;  // U is symmetric
+  r.vol = lambda * (r.exx + r.eyy);
+  r.txx = r.vol + 2.0 * shear * r.exx;
+  r.tyy = r.vol + 2.0 * shear * r.eyy;
+  r.txy = 2.0 * shear * r.exy;
+  return r;
+}
+
+// Zone i's frame at the last force pass, with its in-situ stress.
+ZoneFrame zone_frame(const Zoning& z, std::size_t i) {
+  const ZoneArrays& q = z.arrays;
+  const std::uint32_t g0 = q.gp[0][i], g1 = q.gp[1][i], g2 = q.gp[2][i];
+  ZoneFrame r = zone_frame(q.ux[g0], q.ux[g1], q.ux[g2], q.uy[g0], q.uy[g1], q.uy[g2], q.bx[0][i],
+                           q.bx[1][i], q.bx[2][i], q.by[0][i], q.by[1][i], q.by[2][i],
+                           q.lambda[i], q.shear[i]);
+  if (!q.s0xx.empty()) {
+    r.txx += q.s0xx[i];
+    r.tyy += q.s0yy[i];
+    r.txy += q.s0xy[i];
+  }
+  return r;
+}
+
 // Corner forces of a run of zones, kept small enough to stay in the first-level cache between
 // the vector pass that computes them and the pass that adds them to the gridpoints.
 constexpr std::int64_t kZoneChunk = 256;
@@ -219,10 +266,11 @@ struct ChunkForces {
   alignas(64) double fy0[kZoneChunk], fy1[kZoneChunk], fy2[kZoneChunk];
 };
 
-// Zones [begin, end)'s strain, stress and corner forces (into f, from index 0) from the
-// displacements q.ux, q.uy; `in_situ`: with the stress the zone started with (a separate instance,
-// so a zoning without one pays nothing). Every zone on its own, the same arithmetic in the vector
-// body and the remainder: the result does not depend on how the zones are split.
+// Zones [begin, end)'s corner forces (into f, from index 0) from the displacements q.ux, q.uy;
+// `in_situ`: with the stress the zone started with (a separate instance, so a zoning without one
+// pays nothing). Every zone on its own, the same arithmetic in the vector body and the remainder:
+// the result does not depend on how the zones are split. The world-frame stress and strain are
+// left to Zoning::stress and Zoning::strain, which outputs ask for every few hundred steps.
 template <bool in_situ>
 void stress_zones(Zoning& z, std::int64_t begin, std::int64_t end, ChunkForces& f) {
   ZoneArrays& q = z.arrays;
@@ -232,37 +280,22 @@ void stress_zones(Zoning& z, std::int64_t begin, std::int64_t end, ChunkForces& 
   const double *by0 = q.by[0].data(), *by1 = q.by[1].data(), *by2 = q.by[2].data();
   const double *area = q.area.data(), *lambda = q.lambda.data(), *shear = q.shear.data();
   double *fx0 = f.fx0, *fx1 = f.fx1, *fx2 = f.fx2, *fy0 = f.fy0, *fy1 = f.fy1, *fy2 = f.fy2;
-  double *sxx = z.sxx.data(), *syy = z.syy.data(), *sxy = z.sxy.data(), *szz = z.szz.data();
-  double *exx_w = z.exx.data(), *eyy_w = z.eyy.data(), *gxy_w = z.gxy.data();
   const double *s0xx = q.s0xx.data(), *s0yy = q.s0yy.data(), *s0xy = q.s0xy.data();
 #pragma omp simd
   for (std::int64_t i = begin; i < end; ++i) {
-    // Deformation gradient F = [[a, b], [c, d]] = I + grad u over the initial zone.
-    const double u0 = ux[g0[i]], u1 = ux[g1[i]], u2 = ux[g2[i]];
-    const double v0 = uy[g0[i]], v1 = uy[g1[i]], v2 = uy[g2[i]];
-    const double a = 1 + bx0[i] * u0 + bx1[i] * u1 + bx2[i] * u2;
-    const double b = by0[i] * u0 + by1[i] * u1 + by2[i] * u2;
-    const double c = bx0[i] * v0 + bx1[i] * v1 + bx2[i] * v2;
-    const double d = 1 + by0[i] * v0 + by1[i] * v1 + by2[i] * v2;
-    // Polar decomposition F = R U (2D: R turns by atan2(c - b, a + d)); the strain U - I is
-    // the zone's own, so a rigid rotation of any size leaves it stress-free.
-    const double inv_r = 1.0 / std::sqrt((a + d) * (a + d) + (c - b) * (c - b));
-    const double cs = (a + d) * inv_r, sn = (c - b) * inv_r;
-    const double exx = cs * a + sn * c - 1.0, eyy = cs * d - sn * b - 1.0;
-    const double exy = cs * b + sn * d;  // U is symmetric: the tensor shear strain
-    const double vol = lambda[i] * (exx + eyy);
-    double txx = vol + 2.0 * shear[i] * exx, tyy = vol + 2.0 * shear[i] * eyy;
-    double txy = 2.0 * shear[i] * exy;
+    ZoneFrame r = zone_frame(ux[g0[i]], ux[g1[i]], ux[g2[i]], uy[g0[i]], uy[g1[i]], uy[g2[i]],
+                             bx0[i], bx1[i], bx2[i], by0[i], by1[i], by2[i], lambda[i], shear[i]);
     if constexpr (in_situ) {
-      txx += s0xx[i];
-      tyy += s0yy[i];
-      txy += s0xy[i];
+      r.txx += s0xx[i];
+      r.tyy += s0yy[i];
+      r.txy += s0xy[i];
     }
     // Nominal stress P = R T (T the Biot stress T0 + D (U - I), T0 the in-situ stress), the
     // derivative of the zone's energy A0 (T0:(U - I) + (U - I):D:(U - I) / 2) by F:
     // F^k = -A0 P . grad N_k.
-    const double pxx = cs * txx - sn * txy, pxy = cs * txy - sn * tyy;
-    const double pyx = sn * txx + cs * txy, pyy = sn * txy + cs * tyy;
+    const double cs = r.cs, sn = r.sn;
+    const double pxx = cs * r.txx - sn * r.txy, pxy = cs * r.txy - sn * r.tyy;
+    const double pyx = sn * r.txx + cs * r.txy, pyy = sn * r.txy + cs * r.tyy;
     const double A = area[i];
     const std::int64_t k = i - begin;
     fx0[k] = -A * (pxx * bx0[i] + pxy * by0[i]);
@@ -271,15 +304,6 @@ void stress_zones(Zoning& z, std::int64_t begin, std::int64_t end, ChunkForces& 
     fy1[k] = -A * (pyx * bx1[i] + pyy * by1[i]);
     fx2[k] = -A * (pxx * bx2[i] + pxy * by2[i]);
     fy2[k] = -A * (pyx * bx2[i] + pyy * by2[i]);
-    // Stress and strain turned into the world frame: R T R^T and R (U - I) R^T.
-    const double c2 = cs * cs, s2 = sn * sn, cssn = cs * sn;
-    sxx[i] = c2 * txx - 2.0 * cssn * txy + s2 * tyy;
-    syy[i] = s2 * txx + 2.0 * cssn * txy + c2 * tyy;
-    sxy[i] = cssn * (txx - tyy) + (c2 - s2) * txy;
-    szz[i] = vol;
-    exx_w[i] = c2 * exx - 2.0 * cssn * exy + s2 * eyy;
-    eyy_w[i] = s2 * exx + 2.0 * cssn * exy + c2 * eyy;
-    gxy_w[i] = 2.0 * (cssn * (exx - eyy) + (c2 - s2) * exy);
   }
 }
 
@@ -363,19 +387,51 @@ std::vector<double> zone_stiffness_bound(const Zoning& z) {
   return kx;
 }
 
+namespace {
+// Stress and strain turned into the world frame: R T R^T and R (U - I) R^T.
+struct WorldState {
+  ZoneStress stress;
+  std::array<double, 3> strain;  // exx, eyy, gamma_xy (engineering)
+};
+WorldState world_state(const Zoning& z, std::size_t i) {
+  const ZoneFrame r = zone_frame(z, i);
+  const double c2 = r.cs * r.cs, s2 = r.sn * r.sn, cssn = r.cs * r.sn;
+  WorldState w;
+  w.stress.xx = c2 * r.txx - 2.0 * cssn * r.txy + s2 * r.tyy;
+  w.stress.yy = s2 * r.txx + 2.0 * cssn * r.txy + c2 * r.tyy;
+  w.stress.xy = cssn * (r.txx - r.tyy) + (c2 - s2) * r.txy;
+  w.stress.zz = r.vol;
+  w.strain = {c2 * r.exx - 2.0 * cssn * r.exy + s2 * r.eyy,
+              s2 * r.exx + 2.0 * cssn * r.exy + c2 * r.eyy,
+              2.0 * (cssn * (r.exx - r.eyy) + (c2 - s2) * r.exy)};
+  return w;
+}
+}  // namespace
+
+ZoneStress Zoning::stress(std::size_t zone) const {
+  return world_state(*this, zone).stress;
+}
+
+std::array<double, 3> Zoning::strain(std::size_t zone) const {
+  return world_state(*this, zone).strain;
+}
+
 double zone_strain_energy(const Zoning& z) {
   double e = 0.0;
   if (!z.arrays.s0xx.empty()) {  // from the stress alone: s.D^-1.s / 2 (it has no strain origin)
     for (std::size_t i = 0; i < z.zones.size(); ++i) {
       const double l = z.zones[i].lambda, g = z.zones[i].shear, p = l + 2.0 * g;
-      const double sx = z.sxx[i], sy = z.syy[i], t = z.sxy[i];
+      const ZoneStress s = z.stress(i);
+      const double sx = s.xx, sy = s.yy, t = s.xy;
       e += 0.5 * z.zones[i].area *
            ((p * (sx * sx + sy * sy) - 2.0 * l * sx * sy) / (4.0 * g * (l + g)) + t * t / g);
     }
     return e;
   }
   for (std::size_t i = 0; i < z.zones.size(); ++i) {
-    e += 0.5 * z.zones[i].area * (z.sxx[i] * z.exx[i] + z.syy[i] * z.eyy[i] + z.sxy[i] * z.gxy[i]);
+    const WorldState w = world_state(z, i);
+    e += 0.5 * z.zones[i].area *
+         (w.stress.xx * w.strain[0] + w.stress.yy * w.strain[1] + w.stress.xy * w.strain[2]);
   }
   return e;
 }
@@ -387,10 +443,11 @@ ZoneStress mean_stress(const Model& model, Group group) {
   for (std::size_t i = 0; i < z.zones.size(); ++i) {
     if (model.blocks.group[z.zone_block[i]] != group) continue;
     const double a = z.zones[i].area;
-    m.xx += a * z.sxx[i];
-    m.yy += a * z.syy[i];
-    m.xy += a * z.sxy[i];
-    m.zz += a * z.szz[i];
+    const ZoneStress s = z.stress(i);
+    m.xx += a * s.xx;
+    m.yy += a * s.yy;
+    m.xy += a * s.xy;
+    m.zz += a * s.zz;
     area += a;
   }
   if (area > 0) m = {m.xx / area, m.yy / area, m.xy / area, m.zz / area};

@@ -217,8 +217,10 @@ io::VtkFrame make_frame(const RunView& v) {
     if (bl.group[z.zone_block[i]] == model::Group::excavated) continue;  // not drawn
     for (const std::uint32_t g : z.zones[i].gp) f.zone_points.push_back({z.x[g], z.y[g]});
     f.zone_block.push_back(static_cast<std::int32_t>(z.zone_block[i]));
-    f.zone_stress.push_back({z.sxx[i], z.syy[i], z.sxy[i], z.szz[i]});
-    f.zone_strain.push_back({z.exx[i], z.eyy[i], 0.5 * z.gxy[i]});
+    const model::ZoneStress s = z.stress(i);
+    const std::array<double, 3> e = z.strain(i);
+    f.zone_stress.push_back({s.xx, s.yy, s.xy, s.zz});
+    f.zone_strain.push_back({e[0], e[1], 0.5 * e[2]});
   }
   for (const laws::CrackEvent& e : v.solver.cracks()) {
     const model::Point mid{e.x, e.y}, t{-e.ny * 0.5 * e.length, e.nx * 0.5 * e.length};

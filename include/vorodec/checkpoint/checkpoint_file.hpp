@@ -20,7 +20,7 @@ namespace vorodec::checkpoint {
 // 5: blocks carry their groups (excavation).
 // 6: excavation stages save their joint-set measures and relaxation loads.
 // 7: the solver's energy terms hold the in-situ stress's initial strain energy.
-inline constexpr std::uint32_t kFormat = 7;
+inline constexpr std::uint32_t kFormat = 8;
 
 struct Header {
   std::string vorodec_version;

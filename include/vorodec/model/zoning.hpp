@@ -47,7 +47,9 @@ struct ZoneArrays {
   std::array<std::vector<std::uint32_t>, 3> gp;
   std::array<std::vector<double>, 3> bx, by;
   std::vector<double> area, lambda, shear;
-  std::vector<double> ux, uy;  // m, per gridpoint: displacement this step
+  // m, per gridpoint: the displacement of the last force pass, from which every zone's stress and
+  // strain follow (Zoning::stress, Zoning::strain): state, not scratch.
+  std::vector<double> ux, uy;
   // Pa, per zone: the in-situ stress it started with (tension positive, the zone's initial frame),
   // added to its elastic stress; empty: none (docs/theory.md §6.7).
   std::vector<double> s0xx, s0yy, s0xy;
@@ -77,11 +79,9 @@ struct Zoning {
   std::vector<double> cfx, cfy;          // N per m, contact force sums of the current step
   std::vector<std::uint32_t> block;      // owning block
   std::vector<std::uint8_t> prescribed;  // 1: velocity set from outside, not integrated
-  // Zones and their state: stress (Pa) and strain (exx, eyy, gamma_xy engineering) by zone, in
-  // the world frame.
+  // Zones; their stress and strain are functions of the displacements in `arrays` (ux, uy).
   std::vector<Zone> zones;
   ZoneArrays arrays;
-  std::vector<double> sxx, syy, sxy, szz, exx, eyy, gxy;
   std::vector<std::uint32_t> zone_block;  // owning block; a block's zones are consecutive
   // Per block corner (Blocks::corner index): its gridpoint, or -1 on a rigid block.
   std::vector<std::int32_t> corner_gp;
@@ -90,8 +90,12 @@ struct Zoning {
   std::vector<std::uint32_t> blocks, gp_begin, gp_end, zone_begin;
 
   std::size_t gridpoints() const { return x.size(); }
-  ZoneStress stress(std::size_t zone) const { return {sxx[zone], syy[zone], sxy[zone], szz[zone]}; }
-  std::array<double, 3> strain(std::size_t zone) const { return {exx[zone], eyy[zone], gxy[zone]}; }
+  // Pa, the zone's stress in the world frame at the last force pass (R T R^T), computed when
+  // asked: the force pass needs only the zone's own frame.
+  ZoneStress stress(std::size_t zone) const;
+  // The zone's strain in the world frame at the last force pass, R (U - I) R^T: exx, eyy and the
+  // engineering shear strain gamma_xy.
+  std::array<double, 3> strain(std::size_t zone) const;
   bool empty() const { return zones.empty(); }
 };
 
@@ -110,8 +114,8 @@ void add_deformable_block(Model& model, const std::vector<Point>& polygon, doubl
 // World corners, rounded-corner arcs and centroids of the deformable blocks from their gridpoints.
 void refresh_deformable(Model& model);
 
-// Zone strains and stresses from the gridpoint displacements; zone forces gathered per gridpoint
-// into (out_fx, out_fy) (N per m).
+// The gridpoint displacements (arrays.ux, arrays.uy) and from them the zone forces, gathered per
+// gridpoint into (out_fx, out_fy) (N per m).
 void zone_forces(Zoning& z, std::vector<double>& out_fx, std::vector<double>& out_fy);
 
 // N/m per gridpoint, the Gershgorin row bound of the zone stiffness (docs/theory.md §9.2).
