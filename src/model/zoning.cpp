@@ -247,9 +247,9 @@ struct ZoneFrame {
 ZoneFrame zone_frame(const Zoning& z, std::size_t i) {
   const ZoneArrays& q = z.arrays;
   const std::uint32_t g0 = q.gp[0][i], g1 = q.gp[1][i], g2 = q.gp[2][i];
-  ZoneFrame r = zone_frame(q.ux[g0], q.ux[g1], q.ux[g2], q.uy[g0], q.uy[g1], q.uy[g2], q.bx[0][i],
-                           q.bx[1][i], q.bx[2][i], q.by[0][i], q.by[1][i], q.by[2][i],
-                           q.lambda[i], q.shear[i]);
+  ZoneFrame r =
+      zone_frame(q.ux[g0], q.ux[g1], q.ux[g2], q.uy[g0], q.uy[g1], q.uy[g2], q.bx[0][i], q.bx[1][i],
+                 q.bx[2][i], q.by[0][i], q.by[1][i], q.by[2][i], q.lambda[i], q.shear[i]);
   if (!q.s0xx.empty()) {
     r.txx += q.s0xx[i];
     r.tyy += q.s0yy[i];

@@ -139,6 +139,26 @@ void Solver::partition() {
   shared_blocks_.clear();
   for (std::size_t b = 0; b < nb; ++b)
     if (part[b] == several) shared_blocks_.push_back(static_cast<std::uint32_t>(b));
+  // The same for the contacts with a deformable side (laws::a_serial, laws::b_serial), law by
+  // law: the laws' passes run one after another.
+  for (std::size_t l = 0; l < laws_.size(); ++l) {
+    std::fill(part.begin(), part.end(), none);
+    for (int t = 0; t < chunks_; ++t) {
+      const auto [lo, hi] = laws::chunk_range(deformable_begin_[l], law_begin_[l + 1], t, chunks_);
+      for (std::size_t i = lo; i < hi; ++i) {
+        for (const auto blk : {model_.contacts[i].a, model_.contacts[i].b}) {
+          int& p = part[static_cast<std::size_t>(blk)];
+          p = p == none || p == t ? t : several;
+        }
+      }
+    }
+    for (std::size_t i = deformable_begin_[l]; i < law_begin_[l + 1]; ++i) {
+      const model::Contact& c = model_.contacts[i];
+      shared_sides_[i] |= static_cast<std::uint8_t>(
+          (part[static_cast<std::size_t>(c.a)] == several ? laws::a_serial : 0) |
+          (part[static_cast<std::size_t>(c.b)] == several ? laws::b_serial : 0));
+    }
+  }
 }
 
 void Solver::compute_time_step() {

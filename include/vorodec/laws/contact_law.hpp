@@ -68,12 +68,15 @@ inline std::pair<std::size_t, std::size_t> chunk_range(std::size_t begin, std::s
 // writes its force record and the solver gathers the block's sum afterwards, also in contact
 // order. Either way the sums are the same bits for any thread count.
 inline constexpr std::uint8_t a_shared = 1, b_shared = 2;
+// Contacts with a deformable side are cut into parts the same way; a side whose block several of
+// those parts touch is added to its gridpoints or sum after the parts, in contact order.
+inline constexpr std::uint8_t a_serial = 4, b_serial = 8;
 
 struct StepContext {
   model::Blocks* blocks;
   model::Contact* contacts;          // whole contact array
   model::ContactForce* forces;       // whole force array (written where a block is shared)
-  const std::uint8_t* shared_sides;  // per contact: a_shared | b_shared
+  const std::uint8_t* shared_sides;  // per contact: a_shared | b_shared | a_serial | b_serial
   model::BlockForceSum* sums;        // per block contact sums, zero before the step
   int chunks;                        // parts per law group; cracks_per_chunk has this many lists
   std::vector<std::vector<CrackEvent>>* cracks_per_chunk;

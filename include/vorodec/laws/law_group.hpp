@@ -121,19 +121,21 @@ class LawGroupOf final : public LawGroup {
 
   // Contacts with a deformable side (docs/theory.md §4.4): the corner side moves with its
   // gridpoint, the edge side with its two gridpoints interpolated at the contact point, and their
-  // force goes to the same gridpoints with the same weights. Two passes, so that every gridpoint
-  // and block sum adds its forces in contact order whatever the thread count: the laws in parallel
-  // parts, then the forces and dissipation added in order (a few additions per contact).
+  // force goes to the same gridpoints with the same weights. The laws run in parallel parts, each
+  // adding its forces to the blocks only it touches; what must be added in contact order to stay
+  // the same bits for any thread count (the sides a_serial and b_serial mark, and dissipation) is
+  // left in a list per part and added after, part by part.
   void step_deformable(StepContext& ctx, std::size_t begin, std::size_t end) override {
     const int chunks = ctx.chunks;
-    outcomes_.resize(end - begin);
+    deferred_.resize(static_cast<std::size_t>(chunks));
 #pragma omp parallel num_threads(chunks) if (end - begin >= deformable_parallel_from)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
       const model::BodyView v = model::body_view(*ctx.blocks, *ctx.zoning);
       model::Contact* contacts = ctx.contacts;
-      DeformableOutcome* outcomes = outcomes_.data();
       const Loop loop = loop_constants(ctx);
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
+      auto& later = deferred_[static_cast<std::size_t>(t)];
+      later.clear();
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
       // The frames of a batch first, as in step_range: independent of one another, so the core
       // overlaps their square roots and divisions.
@@ -146,7 +148,7 @@ class LawGroupOf final : public LawGroup {
           model::Contact& c = contacts[i];
           const model::ContactFrame& f = frames[i - first];
           const auto a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-          DeformableOutcome& o = outcomes[i - begin];
+          DeformableOutcome o;
           o.pa = model::corner_point(v, a, c.corner);
           o.pb = model::edge_point(v, b, c.edge, f.point);
           o.point = f.point;
@@ -157,47 +159,29 @@ class LawGroupOf final : public LawGroup {
           o.slip = o.breakage = o.dashpots = 0.0;
           o.force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f, du_s, 1.0,
                            cracks, o.slip, o.breakage, o.dashpots);
+          o.contact = i;
+          o.sides = 0;
+          if (!add_side(ctx, o, a, o.pa, 1.0, false, false)) o.sides |= a_serial;
+          if (!add_side(ctx, o, b, o.pb, -1.0, true, false)) o.sides |= b_serial;
+          // A sum that skips the zeros of elastic steps is the same bits.
+          if (o.sides != 0 || o.slip != 0.0 || o.breakage != 0.0 || o.dashpots != 0.0)
+            later.push_back(o);
         }
         first = stop;
       }
     }
-    model::Blocks& bl = *ctx.blocks;
-    model::Zoning& z = *ctx.zoning;
     double slip = 0.0, breakage = 0.0, dashpots = 0.0;
-    for (std::size_t i = begin; i < end; ++i) {
-      const DeformableOutcome& o = outcomes_[i - begin];
-      const model::Contact& c = ctx.contacts[i];
-      const std::uint8_t shared = ctx.shared_sides[i];
-      const auto apply = [&](std::size_t blk, const model::BodyPoint& p, double sign, bool on_b) {
-        if (p.g0 >= 0) {
-          const auto g0 = static_cast<std::size_t>(p.g0);
-          z.cfx[g0] += sign * (1.0 - p.w1) * o.force.x;
-          z.cfy[g0] += sign * (1.0 - p.w1) * o.force.y;
-          if (p.g1 >= 0) {
-            const auto g1 = static_cast<std::size_t>(p.g1);
-            z.cfx[g1] += sign * p.w1 * o.force.x;
-            z.cfy[g1] += sign * p.w1 * o.force.y;
-          }
-          return;
-        }
-        const model::BlockKinematics& k = bl.kin[blk];
-        const double m = (o.point.x - k.x) * o.force.y - (o.point.y - k.y) * o.force.x;
-        if (shared & (on_b ? b_shared : a_shared)) {
-          model::ContactForce& rec = ctx.forces[i];
-          rec.fx = o.force.x;
-          rec.fy = o.force.y;
-          (on_b ? rec.mb : rec.ma) = m;
-        } else {
-          ctx.sums[blk].fx += sign * o.force.x;
-          ctx.sums[blk].fy += sign * o.force.y;
-          ctx.sums[blk].m += sign * m;
-        }
-      };
-      apply(static_cast<std::size_t>(c.a), o.pa, 1.0, false);
-      apply(static_cast<std::size_t>(c.b), o.pb, -1.0, true);
-      slip += o.slip;
-      breakage += o.breakage;
-      dashpots += o.dashpots;
+    for (const auto& later : deferred_) {
+      for (const DeformableOutcome& o : later) {
+        const model::Contact& c = ctx.contacts[o.contact];
+        if (o.sides & a_serial)
+          add_side(ctx, o, static_cast<std::size_t>(c.a), o.pa, 1.0, false, true);
+        if (o.sides & b_serial)
+          add_side(ctx, o, static_cast<std::size_t>(c.b), o.pb, -1.0, true, true);
+        slip += o.slip;
+        breakage += o.breakage;
+        dashpots += o.dashpots;
+      }
     }
     ctx.totals.dissipated_slip += slip;
     ctx.totals.dissipated_breakage += breakage;
@@ -423,13 +407,51 @@ class LawGroupOf final : public LawGroup {
   std::vector<typename Law::State> state_;
   std::vector<double> dashpot_parts_;  // per thread part, summed in part order
 
-  // What step_deformable's first pass leaves for its second, per contact of the step's range.
+  // A deformable contact's result: what its parallel pass leaves for the ordered one.
   struct DeformableOutcome {
     model::BodyPoint pa, pb;  // where the force goes on a and on b
     model::Point force, point;
     double slip, breakage, dashpots;  // J per m dissipated
+    std::size_t contact;
+    std::uint8_t sides;  // a_serial | b_serial: the sides still to add
   };
-  std::vector<DeformableOutcome> outcomes_;
+  std::vector<std::vector<DeformableOutcome>> deferred_;  // per part, in contact order
+
+  // Adds o's force on one side (block blk at p; on a: sign 1, on b: -1) where it may be added
+  // now: in the ordered pass (`in_order`) always, in the parallel one where its block is this
+  // part's own. A shared rigid block takes the contact's force record instead, in either pass.
+  // Returns false where the side is left for the ordered pass.
+  static bool add_side(StepContext& ctx, const DeformableOutcome& o, std::size_t blk,
+                       const model::BodyPoint& p, double sign, bool on_b, bool in_order) {
+    const std::uint8_t shared = ctx.shared_sides[o.contact];
+    if (p.g0 < 0 && (shared & (on_b ? b_shared : a_shared))) {
+      const model::BlockKinematics& k = ctx.blocks->kin[blk];
+      model::ContactForce& rec = ctx.forces[o.contact];
+      rec.fx = o.force.x;
+      rec.fy = o.force.y;
+      (on_b ? rec.mb : rec.ma) = (o.point.x - k.x) * o.force.y - (o.point.y - k.y) * o.force.x;
+      return true;
+    }
+    if (!in_order && (shared & (on_b ? b_serial : a_serial))) return false;
+    if (p.g0 >= 0) {
+      model::Zoning& z = *ctx.zoning;
+      const auto g0 = static_cast<std::size_t>(p.g0);
+      z.cfx[g0] += sign * (1.0 - p.w1) * o.force.x;
+      z.cfy[g0] += sign * (1.0 - p.w1) * o.force.y;
+      if (p.g1 >= 0) {
+        const auto g1 = static_cast<std::size_t>(p.g1);
+        z.cfx[g1] += sign * p.w1 * o.force.x;
+        z.cfy[g1] += sign * p.w1 * o.force.y;
+      }
+      return true;
+    }
+    const model::BlockKinematics& k = ctx.blocks->kin[blk];
+    const double m = (o.point.x - k.x) * o.force.y - (o.point.y - k.y) * o.force.x;
+    ctx.sums[blk].fx += sign * o.force.x;
+    ctx.sums[blk].fy += sign * o.force.y;
+    ctx.sums[blk].m += sign * m;
+    return true;
+  }
 };
 
 }  // namespace vorodec::laws
