@@ -101,7 +101,7 @@ inline void place_corners(const Point* __restrict corner, const Point* __restric
 }
 }  // namespace
 
-void Blocks::refresh_world() {
+void Blocks::refresh_world(bool skip_deformable) {
   const auto n = static_cast<std::int64_t>(size());
   // Plain pointers: through vector members the compiler must reload every block value after each
   // store to world (a double store might alias them).
@@ -109,6 +109,7 @@ void Blocks::refresh_world() {
   CornerWorld* w = world.data();
   const double* t = theta.data();
   double *cs = cos_t.data(), *sn = sin_t.data();
+  const std::uint8_t* zoned = deformable.data();
 #pragma omp parallel
   {
     // Both loops are static over the same count (and not simd constructs), so each thread gets
@@ -118,6 +119,7 @@ void Blocks::refresh_world() {
 #pragma omp for schedule(static)
     for (std::int64_t bi = 0; bi < n; ++bi) {
       const auto b = static_cast<std::size_t>(bi);
+      if (skip_deformable && zoned[b]) continue;
       if (std::abs(t[b]) > small_angle) {
         cs[b] = std::cos(t[b]);
         sn[b] = std::sin(t[b]);

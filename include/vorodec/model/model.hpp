@@ -82,7 +82,9 @@ struct Blocks {
   std::uint32_t next_corner(std::uint32_t, std::uint32_t c) const { return shape[c].next; }
   std::uint32_t prev_corner(std::uint32_t, std::uint32_t c) const { return shape[c].prev; }
   CornerView corners() const { return {world.data(), shape.data()}; }
-  void refresh_world();
+  // `skip_deformable`: leave the deformable blocks' corners and kinematics, which
+  // refresh_deformable sets from their gridpoints.
+  void refresh_world(bool skip_deformable = false);
   Point to_world(std::uint32_t block, Point local) const {
     const double c = cos_t[block], s = sin_t[block];
     return {x[block] + c * local.x - s * local.y, y[block] + s * local.x + c * local.y};
@@ -147,7 +149,7 @@ void load_state(checkpoint::InArchive& ar, Model& m);
 
 // Blocks::refresh_world() and then the deformable blocks from their gridpoints.
 inline void refresh_world(Model& m) {
-  m.blocks.refresh_world();
+  m.blocks.refresh_world(!m.zoning.empty());
   if (!m.zoning.empty()) refresh_deformable(m);
 }
 
