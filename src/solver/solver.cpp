@@ -112,9 +112,10 @@ void Solver::partition() {
   const std::size_t nb = model_.blocks.size(), nc = model_.contacts.size();
   constexpr int none = -1, several = -2;
   std::vector<int> part(nb, none);
-  for (std::size_t l = 0; l < laws_.size(); ++l) {
+  // Marks each block with the one part whose contacts of [begin, end) touch it, or `several`.
+  const auto mark = [&](std::size_t begin, std::size_t end) {
     for (int t = 0; t < chunks_; ++t) {
-      const auto [lo, hi] = laws::chunk_range(law_begin_[l], deformable_begin_[l], t, chunks_);
+      const auto [lo, hi] = laws::chunk_range(begin, end, t, chunks_);
       for (std::size_t i = lo; i < hi; ++i) {
         for (const auto blk : {model_.contacts[i].a, model_.contacts[i].b}) {
           int& p = part[static_cast<std::size_t>(blk)];
@@ -122,7 +123,8 @@ void Solver::partition() {
         }
       }
     }
-  }
+  };
+  for (std::size_t l = 0; l < laws_.size(); ++l) mark(law_begin_[l], deformable_begin_[l]);
   // The platens' contacts keep their forces whatever the thread count: contact_force_from reads
   // them.
   for (std::size_t b = 0; b < nb; ++b)
@@ -143,15 +145,7 @@ void Solver::partition() {
   // law: the laws' passes run one after another.
   for (std::size_t l = 0; l < laws_.size(); ++l) {
     std::fill(part.begin(), part.end(), none);
-    for (int t = 0; t < chunks_; ++t) {
-      const auto [lo, hi] = laws::chunk_range(deformable_begin_[l], law_begin_[l + 1], t, chunks_);
-      for (std::size_t i = lo; i < hi; ++i) {
-        for (const auto blk : {model_.contacts[i].a, model_.contacts[i].b}) {
-          int& p = part[static_cast<std::size_t>(blk)];
-          p = p == none || p == t ? t : several;
-        }
-      }
-    }
+    mark(deformable_begin_[l], law_begin_[l + 1]);
     for (std::size_t i = deformable_begin_[l]; i < law_begin_[l + 1]; ++i) {
       const model::Contact& c = model_.contacts[i];
       shared_sides_[i] |= static_cast<std::uint8_t>(

@@ -20,6 +20,8 @@ namespace vorodec::checkpoint {
 // 5: blocks carry their groups (excavation).
 // 6: excavation stages save their joint-set measures and relaxation loads.
 // 7: the solver's energy terms hold the in-situ stress's initial strain energy.
+// 8: zones saved as their gridpoints' displacements of the last force pass, not as stress and
+//    strain arrays (computed from them when asked).
 inline constexpr std::uint32_t kFormat = 8;
 
 struct Header {
