@@ -345,22 +345,25 @@ struct BlockArrays {
   const double *fx_applied, *fy_applied, *m_applied, *mass, *inertia, *gravity_mass;
   const std::uint8_t *prescribed, *deformable;
   const model::BlockForceSum* sums;
-};
-struct Works {
-  double boundary = 0, body = 0, damping = 0;
+  double *work_boundary, *work_body, *work_damping;  // J per m: each block's work this step
 };
 
 // Central difference with local damping (docs/theory.md §3.3, 8.1). Branch-free over prescribed
 // blocks so that a rigid-only model's loop vectorises; `zoned` skips deformable blocks (they move
 // with their gridpoints, integrate_gridpoints).
+// Each block's work is stored and summed afterwards in block order: a reduction here would add
+// in an order that depends on the thread count and the vector width (docs/theory.md section 18).
 template <bool zoned>
-Works integrate_blocks(const BlockArrays a, std::int64_t nb, double alpha, double dt, Point g) {
-  double w_boundary = 0, w_body = 0, w_damp = 0;
-#pragma omp parallel for simd schedule(static) reduction(+ : w_boundary, w_body, w_damp)
+void integrate_blocks(const BlockArrays a, std::int64_t nb, double alpha, double dt, Point g) {
+#pragma omp parallel for simd schedule(static)
   for (std::int64_t bi = 0; bi < nb; ++bi) {
     const auto b = static_cast<std::size_t>(bi);
-    if constexpr (zoned)
-      if (a.deformable[b]) continue;
+    if constexpr (zoned) {
+      if (a.deformable[b]) {
+        a.work_boundary[b] = a.work_body[b] = a.work_damping[b] = 0.0;
+        continue;
+      }
+    }
     const double u = a.vx[b], v = a.vy[b], w = a.omega[b];
     const model::BlockForceSum f = a.sums[b];
     const double fx = f.fx + a.fx_applied[b] + a.gravity_mass[b] * g.x;
@@ -379,14 +382,14 @@ Works integrate_blocks(const BlockArrays a, std::int64_t nb, double alpha, doubl
     const double v1 = v + free * ((fy + dfy) / m * dt);
     const double w1 = w + free * ((mz + dmz) / inertia * dt);
     // Work of a platen on the specimen: minus the contact force the specimen exerts on it.
-    w_boundary +=
+    a.work_boundary[b] =
         free * ((a.fx_applied[b] * u1 + a.fy_applied[b] * v1 + a.m_applied[b] * w1) * dt) -
         (1.0 - free) * ((f.fx * u + f.fy * v + f.m * w) * dt);
     // The damping force's work at the step's mean velocity: the kinetic energy at half steps
     // changes by exactly (f + df) . (u + u1) / 2 dt, so the balance closes (with u1 alone it
     // missed up to 1 % of the boundary work after a deformable specimen's peak: measured).
-    w_damp += free * (-(dfx * (u + u1) + dfy * (v + v1) + dmz * (w + w1)) * 0.5 * dt);
-    w_body += free * (a.gravity_mass[b] * (g.x * u1 + g.y * v1) * dt);
+    a.work_damping[b] = free * (-(dfx * (u + u1) + dfy * (v + v1) + dmz * (w + w1)) * 0.5 * dt);
+    a.work_body[b] = free * (a.gravity_mass[b] * (g.x * u1 + g.y * v1) * dt);
     a.vx[b] = u1;
     a.vy[b] = v1;
     a.omega[b] = w1;
@@ -394,25 +397,46 @@ Works integrate_blocks(const BlockArrays a, std::int64_t nb, double alpha, doubl
     a.y[b] += v1 * dt;
     a.theta[b] += w1 * dt;
   }
-  return {w_boundary, w_body, w_damp};
 }
 }  // namespace
 
 void Solver::integrate() {
   auto& bl = model_.blocks;
-  const BlockArrays arrays{bl.x.data(),          bl.y.data(),          bl.theta.data(),
-                           bl.vx.data(),         bl.vy.data(),         bl.omega.data(),
-                           bl.fx.data(),         bl.fy.data(),         bl.moment.data(),
-                           bl.mass.data(),       bl.inertia.data(),    bl.gravity_mass.data(),
-                           bl.prescribed.data(), bl.deformable.data(), sums_.data()};
-  const auto nb = static_cast<std::int64_t>(bl.size());
-  const Works w =
-      model_.zoning.empty()
-          ? integrate_blocks<false>(arrays, nb, settings_.local_damping, dt_, settings_.gravity)
-          : integrate_blocks<true>(arrays, nb, settings_.local_damping, dt_, settings_.gravity);
-  energy_.boundary_work += w.boundary;
-  energy_.body_work += w.body;
-  energy_.damping += w.damping;
+  const std::size_t n = bl.size();
+  block_work_.resize(3 * n);
+  double* work = block_work_.data();
+  const BlockArrays arrays{bl.x.data(),
+                           bl.y.data(),
+                           bl.theta.data(),
+                           bl.vx.data(),
+                           bl.vy.data(),
+                           bl.omega.data(),
+                           bl.fx.data(),
+                           bl.fy.data(),
+                           bl.moment.data(),
+                           bl.mass.data(),
+                           bl.inertia.data(),
+                           bl.gravity_mass.data(),
+                           bl.prescribed.data(),
+                           bl.deformable.data(),
+                           sums_.data(),
+                           work,
+                           work + n,
+                           work + 2 * n};
+  const auto nb = static_cast<std::int64_t>(n);
+  if (model_.zoning.empty())
+    integrate_blocks<false>(arrays, nb, settings_.local_damping, dt_, settings_.gravity);
+  else
+    integrate_blocks<true>(arrays, nb, settings_.local_damping, dt_, settings_.gravity);
+  double w_boundary = 0, w_body = 0, w_damp = 0;
+  for (std::size_t b = 0; b < n; ++b) {
+    w_boundary += work[b];
+    w_body += work[n + b];
+    w_damp += work[2 * n + b];
+  }
+  energy_.boundary_work += w_boundary;
+  energy_.body_work += w_body;
+  energy_.damping += w_damp;
 }
 
 model::Point Solver::contact_force_from(std::size_t b, model::Group g) const {

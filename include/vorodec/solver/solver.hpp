@@ -147,6 +147,9 @@ class Solver {
   // J per m, each gridpoint's share of this step's boundary, body and damping work (scratch),
   // summed after the vectorised update in gridpoint order.
   std::vector<double> work_boundary_, work_body_, work_damping_;
+  // J per m, each block's boundary, body and damping work of this step (scratch, three runs of
+  // one entry per block), summed after the vectorised update in block order.
+  std::vector<double> block_work_;
   ContactDetector detector_;
   SolverSettings settings_;
   std::vector<model::ContactForce> forces_;
