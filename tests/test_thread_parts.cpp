@@ -1,7 +1,8 @@
 // The contact loop's thread parts (laws::chunk_range): blocks of one part get their force sums in
 // the loop, blocks shared by parts get them gathered afterwards, both in contact order. Contact
-// detection cuts the block pairs into runs, one per thread, joined in pair order. So the run must
-// be the same bits, and the same contacts in the same order, however many parts there are.
+// detection cuts the block pairs into runs, one per thread, joined in pair order. The energy the
+// contacts dissipate is summed in contact order too. So the run must be the same bits, and the same
+// contacts in the same order, however many parts there are.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -20,12 +21,13 @@ struct Snapshot {
   std::vector<double> x, y, theta, vx, vy, omega, fn, fs;
   std::vector<std::uint64_t> id;
   std::vector<std::uint32_t> corner, edge;
+  double slip, breakage, viscous;  // J per m dissipated
 };
 
-Snapshot run_with_parts(int parts) {
+Snapshot run_with_parts(const std::string& model_file, double platen_velocity, int parts) {
   omp_set_num_threads(parts);
   io::ModelConfig cfg =
-      run::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/tests/models/e2e_small.toml");
+      run::read_model_file(std::string(VORODEC_SOURCE_DIR) + "/tests/models/" + model_file);
   // Enough blocks for the contact loop to open its parallel region (>= 2,048 contacts).
   cfg.tessellation.block_count = 600;
   cfg.tessellation.outline.width *= 2.0;
@@ -33,11 +35,13 @@ Snapshot run_with_parts(int parts) {
   const auto specimen = run::make_specimen(cfg);
   run::PreparedModel pm = run::prepare_model(cfg, specimen);
   const loading::SpecimenBoundary boundary(*pm.model);
-  boundary.set_platen_velocity(*pm.model, 0.05);
+  boundary.set_platen_velocity(*pm.model, platen_velocity);
   for (int i = 0; i < 400; ++i) pm.solver->step();
   omp_set_num_threads(1);
   const model::Blocks& bl = pm.model->blocks;
-  Snapshot s{bl.x, bl.y, bl.theta, bl.vx, bl.vy, bl.omega, {}, {}, {}, {}, {}};
+  const solver::Energy& e = pm.solver->energy();
+  Snapshot s{bl.x, bl.y, bl.theta, bl.vx, bl.vy,  bl.omega,   {},
+             {},   {},   {},       {},    e.slip, e.breakage, e.viscous};
   for (const auto& c : pm.model->contacts) {
     s.fn.push_back(c.fn);
     s.fs.push_back(c.fs);
@@ -50,13 +54,13 @@ Snapshot run_with_parts(int parts) {
   return s;
 }
 
-}  // namespace
-
-TEST(ThreadParts, BlocksContactsAndTheirForcesAreTheSameForOneThreeAndFourParts) {
-  const Snapshot one = run_with_parts(1);
-  ASSERT_GE(one.fn.size(), 2048u);
+// Returns the one-part run.
+Snapshot expect_same_for_three_and_four_parts(const std::string& model_file,
+                                              double platen_velocity) {
+  const Snapshot one = run_with_parts(model_file, platen_velocity, 1);
+  EXPECT_GE(one.fn.size(), 2048u);
   for (const int parts : {3, 4}) {
-    const Snapshot many = run_with_parts(parts);
+    const Snapshot many = run_with_parts(model_file, platen_velocity, parts);
     // EXPECT_EQ on doubles compares exactly: any change of summation order would show.
     EXPECT_EQ(many.x, one.x) << parts << " parts";
     EXPECT_EQ(many.y, one.y) << parts << " parts";
@@ -69,5 +73,25 @@ TEST(ThreadParts, BlocksContactsAndTheirForcesAreTheSameForOneThreeAndFourParts)
     EXPECT_EQ(many.id, one.id) << parts << " parts";
     EXPECT_EQ(many.corner, one.corner) << parts << " parts";
     EXPECT_EQ(many.edge, one.edge) << parts << " parts";
+    EXPECT_EQ(many.slip, one.slip) << parts << " parts";
+    EXPECT_EQ(many.breakage, one.breakage) << parts << " parts";
+    EXPECT_EQ(many.viscous, one.viscous) << parts << " parts";
   }
+  return one;
+}
+
+}  // namespace
+
+TEST(ThreadParts, BlocksContactsAndTheirForcesAreTheSameForOneThreeAndFourParts) {
+  expect_same_for_three_and_four_parts("e2e_small.toml", 0.05);
+}
+
+TEST(ThreadParts, DissipatedEnergiesAreTheSameForOneThreeAndFourParts) {
+  // Fast enough that contacts break and slip within the 400 steps; Burger's dashpots work in
+  // every step.
+  const Snapshot cracking = expect_same_for_three_and_four_parts("e2e_small.toml", 2.0);
+  EXPECT_GT(cracking.slip, 0.0);
+  EXPECT_GT(cracking.breakage, 0.0);
+  const Snapshot creeping = expect_same_for_three_and_four_parts("creep_burgers_small.toml", 2.0);
+  EXPECT_GT(creeping.viscous, 0.0);
 }

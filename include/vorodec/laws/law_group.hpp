@@ -128,6 +128,7 @@ class LawGroupOf final : public LawGroup {
   void step_deformable(StepContext& ctx, std::size_t begin, std::size_t end) override {
     const int chunks = ctx.chunks;
     deferred_.resize(static_cast<std::size_t>(chunks));
+    spent_.resize(static_cast<std::size_t>(chunks));
 #pragma omp parallel num_threads(chunks) if (end - begin >= deformable_parallel_from)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
       const model::BodyView v = model::body_view(*ctx.blocks, *ctx.zoning);
@@ -136,6 +137,8 @@ class LawGroupOf final : public LawGroup {
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
       auto& later = deferred_[static_cast<std::size_t>(t)];
       later.clear();
+      auto& spent = spent_[static_cast<std::size_t>(t)].records;
+      spent.clear();
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
       // The frames of a batch first, as in step_range: independent of one another, so the core
       // overlaps their square roots and divisions.
@@ -156,21 +159,17 @@ class LawGroupOf final : public LawGroup {
           const model::Point vb = model::velocity_at(v, b, o.pb, f.point);
           // Gridpoint corners: the increment from the gridpoints' velocities, force at the point.
           const double du_s = ((va.x - vb.x) * -f.n.y + (va.y - vb.y) * f.n.x) * loop.dt;
-          o.slip = o.breakage = o.dashpots = 0.0;
           o.force = update(loop, c, loop.props[i - begin], loop.state[i - begin], f, du_s, 1.0,
-                           cracks, o.slip, o.breakage, o.dashpots);
+                           cracks, spent);
           o.contact = i;
           o.sides = 0;
           if (!add_side(ctx, o, a, o.pa, 1.0, false, false)) o.sides |= a_serial;
           if (!add_side(ctx, o, b, o.pb, -1.0, true, false)) o.sides |= b_serial;
-          // A sum that skips the zeros of elastic steps is the same bits.
-          if (o.sides != 0 || o.slip != 0.0 || o.breakage != 0.0 || o.dashpots != 0.0)
-            later.push_back(o);
+          if (o.sides != 0) later.push_back(o);
         }
         first = stop;
       }
     }
-    double slip = 0.0, breakage = 0.0, dashpots = 0.0;
     for (const auto& later : deferred_) {
       for (const DeformableOutcome& o : later) {
         const model::Contact& c = ctx.contacts[o.contact];
@@ -178,14 +177,9 @@ class LawGroupOf final : public LawGroup {
           add_side(ctx, o, static_cast<std::size_t>(c.a), o.pa, 1.0, false, true);
         if (o.sides & b_serial)
           add_side(ctx, o, static_cast<std::size_t>(c.b), o.pb, -1.0, true, true);
-        slip += o.slip;
-        breakage += o.breakage;
-        dashpots += o.dashpots;
       }
     }
-    ctx.totals.dissipated_slip += slip;
-    ctx.totals.dissipated_breakage += breakage;
-    ctx.totals.dissipated_viscous += dashpots;
+    add_spent(ctx.totals);
   }
 
  private:
@@ -224,13 +218,10 @@ class LawGroupOf final : public LawGroup {
   template <bool from_memory>
   void step_range(StepContext& ctx, std::size_t begin, std::size_t end) {
     const int chunks = ctx.chunks;
-    double slip = 0.0, breakage = 0.0;
-    if constexpr (is_viscous) {
-      dashpot_parts_.assign(static_cast<std::size_t>(chunks), 0.0);
-    }
+    spent_.resize(static_cast<std::size_t>(chunks));
     // One part per thread; a thread the runtime did not grant (or a group too small to be worth
     // a parallel region) leaves its part to the others.
-#pragma omp parallel num_threads(chunks) if (end - begin >= 2048) reduction(+ : slip, breakage)
+#pragma omp parallel num_threads(chunks) if (end - begin >= 2048)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
       // Private to the thread: shared ones are read through the region's data block, again after
       // every one-byte store.
@@ -242,7 +233,8 @@ class LawGroupOf final : public LawGroup {
       model::BlockForceSum* sums = ctx.sums;
       const Loop loop = loop_constants(ctx);
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
-      double dashpots = 0.0;  // viscous laws: this part's dashpot work
+      auto& spent = spent_[static_cast<std::size_t>(t)].records;
+      spent.clear();
       const auto [lo, hi] = chunk_range(begin, end, t, chunks);
       // Walked by pointers: an index would be one more register, spilled, in a loop short of them.
       typename Law::Props* props = loop.props + (lo - begin);
@@ -279,8 +271,7 @@ class LawGroupOf final : public LawGroup {
         }
         c.shear_ray = f.ray;
         c.shear_edge = c.edge;
-        const model::Point force =
-            update(loop, c, *props, *state, f, du_s, f.gain, cracks, slip, breakage, dashpots);
+        const model::Point force = update(loop, c, *props, *state, f, du_s, f.gain, cracks, spent);
         const double fx = force.x, fy = force.y;
         const double ma = (f.arm.x - ka.x) * fy - (f.arm.y - ka.y) * fx;
         const double mb = (f.arm.x - kb.x) * fy - (f.arm.y - kb.y) * fx;
@@ -331,12 +322,28 @@ class LawGroupOf final : public LawGroup {
           first = stop;
         }
       }
-      if constexpr (is_viscous) dashpot_parts_[static_cast<std::size_t>(t)] = dashpots;
     }
-    ctx.totals.dissipated_slip += slip;
-    ctx.totals.dissipated_breakage += breakage;
-    if constexpr (is_viscous)
-      for (const double w : dashpot_parts_) ctx.totals.dissipated_viscous += w;
+    add_spent(ctx.totals);
+  }
+
+  // What one contact dissipated in a step that was not elastic, J per m.
+  struct Spent {
+    double slip, breakage, dashpots;
+  };
+  // The parts' dissipation, summed in contact order (the parts in order, each in contact order):
+  // per-part sums would add in an order set by the thread count.
+  void add_spent(ContactTotals& totals) const {
+    double slip = 0.0, breakage = 0.0, dashpots = 0.0;
+    for (const auto& part : spent_) {
+      for (const Spent& s : part.records) {
+        slip += s.slip;
+        breakage += s.breakage;
+        dashpots += s.dashpots;
+      }
+    }
+    totals.dissipated_slip += slip;
+    totals.dissipated_breakage += breakage;
+    totals.dissipated_viscous += dashpots;
   }
 
   // What every contact of a step reads, in locals: behind a pointer the compiler would reload
@@ -351,12 +358,14 @@ class LawGroupOf final : public LawGroup {
   }
 
   // Law::evaluate for contact c with its properties and state and shear increment du_s of a
-  // with respect to b, its bookkeeping (state, crack, dissipation), and the force on a: the
-  // shear force times `gain` (ContactFrame::gain) along s.
-  [[gnu::always_inline]] inline model::Point update(
-      const Loop& loop, model::Contact& c, const typename Law::Props& props,
-      typename Law::State& state, const model::ContactFrame& f, double du_s, double gain,
-      std::vector<CrackEvent>& cracks, double& slip, double& breakage, double& dashpots) {
+  // with respect to b, its bookkeeping (state, crack, dissipation in `spent` unless the step was
+  // elastic), and the force on a: the shear force times `gain` (ContactFrame::gain) along s.
+  [[gnu::always_inline]] inline model::Point update(const Loop& loop, model::Contact& c,
+                                                    const typename Law::Props& props,
+                                                    typename Law::State& state,
+                                                    const model::ContactFrame& f, double du_s,
+                                                    double gain, std::vector<CrackEvent>& cracks,
+                                                    std::vector<Spent>& spent) {
     const model::Point s{-f.n.y, f.n.x};
     const double dt = loop.dt;
     const ContactKinematics k{f.gap, f.gap - c.gap, du_s, c.length, dt};
@@ -379,20 +388,22 @@ class LawGroupOf final : public LawGroup {
       // A viscous law's spring energy depends on its state, so it was taken before the step.
       const double e0 = is_viscous ? energy_before : energy(props, state, fn0, fs0);
       dissipated = work - (energy(props, state, r.fn, r.fs) - e0) - viscous_work;
-      dashpots += viscous_work;
     }
     c.gap = f.gap;
     c.fn = r.fn;
     c.fs = r.fs;
-    if (r.event == ContactEvent::tensile_failure || r.event == ContactEvent::shear_failure) {
-      breakage += dissipated;
+    const bool failed =
+        r.event == ContactEvent::tensile_failure || r.event == ContactEvent::shear_failure;
+    // Most steps are elastic and dissipate nothing: they leave no record.
+    if (!r.elastic)
+      spent.push_back(failed ? Spent{0.0, dissipated, viscous_work}
+                             : Spent{dissipated, 0.0, viscous_work});
+    if (failed) {
       c.state = r.event == ContactEvent::tensile_failure ? model::ContactState::tensile_failed
                                                          : model::ContactState::shear_failed;
       cracks.push_back(
           {loop.time, f.point.x, f.point.y, f.n.x, f.n.y, c.length, c.a, c.b, r.event, dissipated});
     } else {
-      // Most steps are elastic and dissipate nothing: they skip the sum, which lives on the stack.
-      if (!r.elastic) slip += dissipated;
       if (c.state <= model::ContactState::slipping)
         c.state = r.event == ContactEvent::slip ? model::ContactState::slipping
                                                 : model::ContactState::intact;
@@ -405,13 +416,17 @@ class LawGroupOf final : public LawGroup {
   std::uint64_t seed_;
   std::vector<typename Law::Props> props_;
   std::vector<typename Law::State> state_;
-  std::vector<double> dashpot_parts_;  // per thread part, summed in part order
+  // One part's records, in contact order, on cache lines of its own: the parts' threads push to
+  // their lists at the same time.
+  struct alignas(64) PartSpent {
+    std::vector<Spent> records;
+  };
+  std::vector<PartSpent> spent_;
 
   // A deformable contact's result: what its parallel pass leaves for the ordered one.
   struct DeformableOutcome {
     model::BodyPoint pa, pb;  // where the force goes on a and on b
     model::Point force, point;
-    double slip, breakage, dashpots;  // J per m dissipated
     std::size_t contact;
     std::uint8_t sides;  // a_serial | b_serial: the sides still to add
   };
