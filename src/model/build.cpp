@@ -101,7 +101,7 @@ inline void place_corners(const Point* __restrict corner, const Point* __restric
 }
 }  // namespace
 
-void Blocks::refresh_world(bool skip_deformable) {
+void Blocks::refresh_world(bool skip_deformable, std::span<const std::size_t> parts) {
   const auto n = static_cast<std::int64_t>(size());
   // Plain pointers: through vector members the compiler must reload every block value after each
   // store to world (a double store might alias them).
@@ -112,12 +112,11 @@ void Blocks::refresh_world(bool skip_deformable) {
   const std::uint8_t* zoned = deformable.data();
 #pragma omp parallel
   {
-    // Both loops are static over the same count (and not simd constructs), so each thread gets
-    // the same blocks in both and needs no barrier between them. The first vectorises as it is.
-#pragma omp for schedule(static) nowait
-    for (std::int64_t b = 0; b < n; ++b) small_angle_cos_sin(t[b], cs[b], sn[b]);
-#pragma omp for schedule(static)
-    for (std::int64_t bi = 0; bi < n; ++bi) {
+    // Each thread its own blocks in both loops, so no barrier between them. The first vectorises
+    // as it is.
+    const auto [lo, hi] = block_part(parts, n);
+    for (std::int64_t b = lo; b < hi; ++b) small_angle_cos_sin(t[b], cs[b], sn[b]);
+    for (std::int64_t bi = lo; bi < hi; ++bi) {
       const auto b = static_cast<std::size_t>(bi);
       if (skip_deformable && zoned[b]) continue;
       if (std::abs(t[b]) > small_angle) {

@@ -7,8 +7,9 @@ namespace vorodec::solver {
 // A member added to Solver is either state a checkpoint carries (save and load it in Solver::state)
 // or comes again from the model file or the loaded state (say so there); then update these sizes.
 // face_control_ is the driver's, set again when it is made; the work_* and block_work_ are scratch.
-// The detector's law table (its joint pairs too) comes again from the model file.
-static_assert(sizeof(Solver) == 1128, "Solver changed: see Solver::state");
+// The detector's law table (its joint pairs too) comes again from the model file. balance_ sets
+// no result (any cut gives the same bits): a loaded run starts from equal parts.
+static_assert(sizeof(Solver) == 1184, "Solver changed: see Solver::state");
 
 template <class Archive>
 void Solver::state(Archive& ar) {

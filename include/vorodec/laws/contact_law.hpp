@@ -54,7 +54,14 @@ struct ContactTotals {
   double dissipated_viscous = 0.0;   // J per m, dashpot work (viscous laws) this step
 };
 
-// Contacts [begin, end) cut into `chunks` contiguous parts: part t, [first, second).
+// When a thread part of a contact pass started and ended (omp_get_wtime, s), on a cache line of
+// its own; written only by a part that ran in a parallel region. The solver moves the cuts
+// between parts towards equal finishing times (solver/part_balance.hpp).
+struct alignas(64) PartClock {
+  double start = 0.0, end = 0.0;
+};
+
+// Contacts [begin, end) cut into `chunks` contiguous equal parts: part t, [first, second).
 inline std::pair<std::size_t, std::size_t> chunk_range(std::size_t begin, std::size_t end, int t,
                                                        int chunks) {
   const std::size_t n = end - begin, t0 = static_cast<std::size_t>(t);
@@ -62,11 +69,15 @@ inline std::pair<std::size_t, std::size_t> chunk_range(std::size_t begin, std::s
   return {begin + n * t0 / k, begin + n * (t0 + 1) / k};
 }
 
-// Where a contact's force goes. Each law group's range is cut into `chunks` parts (chunk_range),
-// one per thread. A block that only contacts of one part touch is that part's own: its sums are
-// added directly, in contact order. A block touched by several parts is shared: the contact
-// writes its force record and the solver gathers the block's sum afterwards, also in contact
-// order. Either way the sums are the same bits for any thread count.
+// From this many rigid (deformable) contacts a law group's pass runs in parallel parts; below,
+// one thread runs them all.
+inline constexpr std::size_t rigid_parallel_from = 2048, deformable_parallel_from = 1024;
+
+// Where a contact's force goes. Each law group's range is cut into `chunks` contiguous parts
+// (StepContext::cuts), one per thread. A block that only contacts of one part touch is that part's
+// own: its sums are added directly, in contact order. A block touched by several parts is shared:
+// the contact writes its force record and the solver gathers the block's sum afterwards, also in
+// contact order. Either way the sums are the same bits for any thread count.
 inline constexpr std::uint8_t a_shared = 1, b_shared = 2;
 // Contacts with a deformable side are cut into parts the same way; a side whose block several of
 // those parts touch is added to its gridpoints or sum after the parts, in contact order.
@@ -79,6 +90,10 @@ struct StepContext {
   const std::uint8_t* shared_sides;  // per contact: a_shared | b_shared | a_serial | b_serial
   model::BlockForceSum* sums;        // per block contact sums, zero before the step
   int chunks;                        // parts per law group; cracks_per_chunk has this many lists
+  // The range's parts: part t is [cuts[t], cuts[t + 1]), cuts[0] = begin, cuts[chunks] = end.
+  // Any cut gives the same bits; the solver places them by measured time.
+  const std::size_t* cuts;
+  PartClock* clocks;  // one per part
   std::vector<std::vector<CrackEvent>>* cracks_per_chunk;
   double dt;    // s
   double time;  // s

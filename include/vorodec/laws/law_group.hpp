@@ -139,7 +139,9 @@ class LawGroupOf final : public LawGroup {
       later.clear();
       auto& spent = spent_[static_cast<std::size_t>(t)].records;
       spent.clear();
-      const auto [lo, hi] = chunk_range(begin, end, t, chunks);
+      const std::size_t lo = ctx.cuts[t], hi = ctx.cuts[t + 1];
+      const bool timed = omp_get_num_threads() > 1;
+      if (timed) ctx.clocks[t].start = omp_get_wtime();
       // The frames of a batch first, as in step_range: independent of one another, so the core
       // overlaps their square roots and divisions.
       model::ContactFrame frames[batch];
@@ -169,6 +171,7 @@ class LawGroupOf final : public LawGroup {
         }
         first = stop;
       }
+      if (timed) ctx.clocks[t].end = omp_get_wtime();
     }
     for (const auto& later : deferred_) {
       for (const DeformableOutcome& o : later) {
@@ -198,8 +201,6 @@ class LawGroupOf final : public LawGroup {
   // From this many contacts the corner records outgrow the L2 cache and prefetching pays (1e4
   // blocks: -14 % per step); below it, it only adds instructions (+8 % in the default model).
   static constexpr std::size_t prefetch_from = 16384, prefetch_ahead = 8;
-  // From this many deformable contacts a step's laws run in parallel parts.
-  static constexpr std::size_t deformable_parallel_from = 1024;
   // Below prefetch_from, contacts whose frames are computed ahead of their laws.
   static constexpr std::ptrdiff_t batch = 32;
 
@@ -221,7 +222,7 @@ class LawGroupOf final : public LawGroup {
     spent_.resize(static_cast<std::size_t>(chunks));
     // One part per thread; a thread the runtime did not grant (or a group too small to be worth
     // a parallel region) leaves its part to the others.
-#pragma omp parallel num_threads(chunks) if (end - begin >= 2048)
+#pragma omp parallel num_threads(chunks) if (end - begin >= rigid_parallel_from)
     for (int t = omp_get_thread_num(); t < chunks; t += omp_get_num_threads()) {
       // Private to the thread: shared ones are read through the region's data block, again after
       // every one-byte store.
@@ -235,7 +236,9 @@ class LawGroupOf final : public LawGroup {
       auto& cracks = (*ctx.cracks_per_chunk)[static_cast<std::size_t>(t)];
       auto& spent = spent_[static_cast<std::size_t>(t)].records;
       spent.clear();
-      const auto [lo, hi] = chunk_range(begin, end, t, chunks);
+      const std::size_t lo = ctx.cuts[t], hi = ctx.cuts[t + 1];
+      const bool timed = omp_get_num_threads() > 1;
+      if (timed) ctx.clocks[t].start = omp_get_wtime();
       // Walked by pointers: an index would be one more register, spilled, in a loop short of them.
       typename Law::Props* props = loop.props + (lo - begin);
       typename Law::State* state = loop.state + (lo - begin);
@@ -322,6 +325,7 @@ class LawGroupOf final : public LawGroup {
           first = stop;
         }
       }
+      if (timed) ctx.clocks[t].end = omp_get_wtime();
     }
     add_spent(ctx.totals);
   }

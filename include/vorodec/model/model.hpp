@@ -1,6 +1,10 @@
 #pragma once
 // The model as plain arrays: rigid blocks (struct of arrays) and point contacts (array of records).
+#include <omp.h>
+
 #include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "vorodec/checkpoint/archive.hpp"
@@ -43,6 +47,18 @@ struct CornerWorld {
 
 // The corner records that contact geometry reads, as plain pointers: a loop that stores a
 // contact's one-byte state (which may alias anything) would otherwise reload them from the vectors.
+// Blocks [first, second) of the calling thread in a parallel region: from `parts` (one cut more
+// than threads) when it has one part per thread, else an equal share. The solver passes its
+// contact parts' blocks, so that a thread moves and refreshes the blocks its contacts read.
+inline std::pair<std::int64_t, std::int64_t> block_part(std::span<const std::size_t> parts,
+                                                        std::int64_t n) {
+  const int k = omp_get_num_threads(), t = omp_get_thread_num();
+  if (parts.size() == static_cast<std::size_t>(k) + 1)
+    return {static_cast<std::int64_t>(parts[static_cast<std::size_t>(t)]),
+            static_cast<std::int64_t>(parts[static_cast<std::size_t>(t) + 1])};
+  return {n * t / k, n * (t + 1) / k};
+}
+
 struct CornerView {
   const CornerWorld* world;
   const CornerShape* shape;
@@ -83,8 +99,8 @@ struct Blocks {
   std::uint32_t prev_corner(std::uint32_t, std::uint32_t c) const { return shape[c].prev; }
   CornerView corners() const { return {world.data(), shape.data()}; }
   // `skip_deformable`: leave the deformable blocks' corners and kinematics, which
-  // refresh_deformable sets from their gridpoints.
-  void refresh_world(bool skip_deformable = false);
+  // refresh_deformable sets from their gridpoints. `parts`: each thread's blocks (block_part).
+  void refresh_world(bool skip_deformable = false, std::span<const std::size_t> parts = {});
   Point to_world(std::uint32_t block, Point local) const {
     const double c = cos_t[block], s = sin_t[block];
     return {x[block] + c * local.x - s * local.y, y[block] + s * local.x + c * local.y};
@@ -148,8 +164,8 @@ void save_state(checkpoint::OutArchive& ar, const Model& m);
 void load_state(checkpoint::InArchive& ar, Model& m);
 
 // Blocks::refresh_world() and then the deformable blocks from their gridpoints.
-inline void refresh_world(Model& m) {
-  m.blocks.refresh_world(!m.zoning.empty());
+inline void refresh_world(Model& m, std::span<const std::size_t> parts = {}) {
+  m.blocks.refresh_world(!m.zoning.empty(), parts);
   if (!m.zoning.empty()) refresh_deformable(m);
 }
 

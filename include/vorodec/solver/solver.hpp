@@ -12,6 +12,7 @@
 #include "vorodec/laws/contact_law.hpp"
 #include "vorodec/model/model.hpp"
 #include "vorodec/solver/contact_detection.hpp"
+#include "vorodec/solver/part_balance.hpp"
 
 namespace vorodec::solver {
 
@@ -122,6 +123,12 @@ class Solver {
   // Cracks of the following steps are stamped with this time (s) instead of the solver's: a
   // corrosion stage's clock. NaN: the solver's time again.
   void set_crack_clock(double t) { crack_clock_ = t; }
+  // Cuts every contact pass into thread parts by these shares from now on, instead of by measured
+  // time (tests: unequal parts give the same bits).
+  void pin_part_shares(std::vector<double> shares) {
+    balance_.pin(std::move(shares));
+    partition();
+  }
   // Checkpoints: everything a step reads that an earlier step wrote, the law groups' state
   // included. The thread parts are redone on loading, for the thread count then.
   void save(checkpoint::OutArchive& ar) const;
@@ -158,6 +165,8 @@ class Solver {
   // Thread parts of the contact loop (laws::StepContext): per contact which of its blocks are
   // shared between parts, and the shared blocks, whose sums gather_shared_forces() takes.
   int chunks_ = 0;
+  PartBalance balance_;  // ranges 2l and 2l + 1: law l's rigid and deformable contacts
+  std::vector<std::size_t> block_cuts_;  // each thread's blocks in the per-block loops
   std::vector<std::uint8_t> shared_sides_;
   std::vector<std::uint32_t> shared_blocks_;
   std::vector<double> x_detect_, y_detect_, t_detect_;  // positions at the last detection
