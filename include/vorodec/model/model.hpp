@@ -45,8 +45,6 @@ struct CornerWorld {
   Point centre;  // arc centre, world frame
 };
 
-// The corner records that contact geometry reads, as plain pointers: a loop that stores a
-// contact's one-byte state (which may alias anything) would otherwise reload them from the vectors.
 // Blocks [first, second) of the calling thread in a parallel region: from `parts` (one cut more
 // than threads) when it has one part per thread, else an equal share. The solver passes its
 // contact parts' blocks, so that a thread moves and refreshes the blocks its contacts read.
@@ -59,6 +57,8 @@ inline std::pair<std::int64_t, std::int64_t> block_part(std::span<const std::siz
   return {n * t / k, n * (t + 1) / k};
 }
 
+// The corner records that contact geometry reads, as plain pointers: a loop that stores a
+// contact's one-byte state (which may alias anything) would otherwise reload them from the vectors.
 struct CornerView {
   const CornerWorld* world;
   const CornerShape* shape;
