@@ -18,8 +18,8 @@ class PartBalance {
   // `ranges` contact ranges, each cut into `parts` parts; starts from equal shares.
   void reset(std::size_t ranges, int parts);
   std::size_t ranges() const { return ranges_.size(); }
-  // Fixes the shares of every range (each positive, summing to 1) and stops following the
-  // clock: tests pin unequal parts with this.
+  // Fixes the shares of every range (one per part, each positive, summing to 1) and stops following
+  // the clock: tests pin unequal parts with this.
   void pin(std::vector<double> shares);
   // Moves the shares towards equal finishing times over the passes recorded, then forgets them.
   void rebalance();
